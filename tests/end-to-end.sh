@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# End-to-end checks of the command line on generated phantoms and, where DATA_DIR
+# holds them, on the real datasets. Usage: tests/end-to-end.sh bin/tortuosity
+# Prints one line per check and "e2e: N passed, N failed" last.
+set -u -o pipefail
+T=${1:?usage: end-to-end.sh path/to/tortuosity}
+DATA_DIR=${DATA_DIR:-../shared/data}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0 failed=0
+
+check() {   # check NAME COMMAND...: passes when the command succeeds
+  local name=$1; shift
+  if "$@" >"$work/out" 2>&1; then passed=$((passed + 1)); echo "ok   $name"
+  else failed=$((failed + 1)); echo "FAIL $name"; sed 's/^/     /' "$work/out" | head -20; fi
+}
+
+column() {  # column NAME FILE: prints that column of a TSV (header row dropped)
+  awk -F'\t' -v name="$1" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) c = i; next } { print $c }' "$2"
+}
+
+near() {    # near A B RELTOL
+  awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t * (b < 0 ? -b : b)) }'
+}
+
+# ---------------------------------------------------------------- command line
+check "tortuosity --help exits 0" "$T" --help
+for cmd in metrics profile sufficient phantom; do
+  check "$cmd --help exits 0" "$T" "$cmd" --help
+done
+metrics_help_lists_options() {
+  local help; help=$("$T" metrics --help) || return 1
+  for opt in --rates --trim --filter --integrator --planar --lambda --segments --ic-tol \
+             --format --voxel --jobs --output --quiet --help; do
+    grep -q -- "$opt" <<<"$help" || { echo "metrics --help does not document $opt"; return 1; }
+  done
+}
+check "metrics --help documents every option" metrics_help_lists_options
+
+exit_status_and_one_line() {   # expected-status COMMAND...
+  local want=$1; shift
+  "$@" >"$work/stdout" 2>"$work/stderr"; local got=$?
+  [ "$got" = "$want" ] || { echo "exit $got, expected $want"; cat "$work/stderr"; return 1; }
+  [ "$(wc -l <"$work/stderr")" -ge 1 ] || { echo "no message"; return 1; }
+  [ ! -s "$work/stdout" ] || { echo "output despite the error"; return 1; }
+}
+check "metrics no-such-file exits 2" exit_status_and_one_line 2 "$T" metrics no-such-file
+check "no-such-file message is one line" bash -c "'$T' metrics no-such-file 2>&1 >/dev/null | wc -l | grep -qx 1"
+check "unknown option exits 2" exit_status_and_one_line 2 "$T" metrics --no-such-option x
+check "bad --rates exits 2" exit_status_and_one_line 2 "$T" metrics --rates 1,zero x
+check "unknown command exits 2" exit_status_and_one_line 2 "$T" frobnicate
+
+printf '0 0 0\n1 0 0\n2 1 x\n' >"$work/bad.txt"
+check "malformed text exits 2" exit_status_and_one_line 2 "$T" metrics "$work/bad.txt"
+check "malformed text names file:line" bash -c "'$T' metrics '$work/bad.txt' 2>&1 | grep -q 'bad.txt:3: '"
+printf '1 0 0 0 0 1 -1\n2 0 1 0 0 1 9\n' >"$work/bad.swc"
+check "SWC with a missing parent names file:line" bash -c "'$T' metrics '$work/bad.swc' 2>&1 | grep -q 'bad.swc:2: parent 9'"
+
+# ---------------------------------------------------------------- phantoms through the whole program
+"$T" phantom --shape salkowski >"$work/salk.txt"
+"$T" phantom --shape salkowski --truth >"$work/salk-truth.tsv"
+"$T" metrics -q --rates 100 "$work/salk.txt" >"$work/salk.tsv"
+for m in TC TT TCCT TC_L TT_L TCCT_L; do
+  check "Salkowski $m at 100X within 1% of quadrature" \
+    near "$(column $m "$work/salk.tsv")" "$(column $m "$work/salk-truth.tsv")" 0.01
+done
+header_has_columns() {
+  local header; header=$(head -1 "$1")
+  for c in file vessel rate n L D D1 IC_kappa IC_N SOA AC AT ACCT TC TT TCCT TC_L TT_L TCCT_L \
+           TC_sum TT_sum TCCT_sum r_min r_mean recon_err recon_err_rel status; do
+    grep -qw "$c" <<<"$(tr '\t' '\n' <<<"$header")" || { echo "missing column $c"; return 1; }
+  done
+}
+check "metrics header names every required column" header_has_columns "$work/salk.tsv"
+check "standard input as -" bash -c "'$T' phantom --shape helix | '$T' metrics -q --rates raw,1 - | grep -c '^-' | grep -qx 2"
+
+"$T" phantom --shape helix --count 40 --sigma 0.05 --seed 3 >"$work/helices.txt"
+"$T" metrics -q --jobs 1 "$work/helices.txt" >"$work/h1.tsv"
+"$T" metrics -q --jobs 2 -o "$work/h2.tsv" "$work/helices.txt"
+check "1 and 2 threads give identical output (-o file)" cmp "$work/h1.tsv" "$work/h2.tsv"
+check "-o leaves no temporary file" bash -c "! ls '$work' | grep -q '\\.tmp\\.'"
+check "same seed gives the same phantoms" bash -c "'$T' phantom --count 3 --sigma 0.1 --seed 9 | cmp - <('$T' phantom --count 3 --sigma 0.1 --seed 9)"
+check "profile has samples and reconstruction" bash -c "'$T' profile --rate 10 '$work/salk.txt' | awk -F'\t' 'NR>1 && \$18==1 {n++} END {exit !(n > 300)}'"
+
+# ---------------------------------------------------------------- real data (where present)
+if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ]; then
+  brava=("$DATA_DIR"/brava-3darteryvis/allscans/*/*.swc)
+  "$T" metrics -q "${brava[@]}" >"$work/brava.tsv"
+  check "BraVa allscans: 10,496 vessels" bash -c "[ \$(column vessel '$work/brava.tsv' 2>/dev/null | wc -l) -gt 0 ] || true; \
+    awk -F'\t' 'NR>1 && \$3==\"1\"' '$work/brava.tsv' | wc -l | grep -qx 10496"
+  check "BraVa at 1,2,10,100X: no NaN or inf anywhere" bash -c "! cut -f4- '$work/brava.tsv' | grep -qiE 'nan|inf'"
+  check "BraVa: every row has a status" bash -c "awk -F'\t' 'NR>1 && \$NF==\"\" {bad++} END {exit bad>0}' '$work/brava.tsv'"
+fi
+dat=("$DATA_DIR"/brummer-tortuosity-R/*.dat)
+if [ -f "${dat[0]}" ]; then
+  check "Angicart .dat: 141 vessels" bash -c "'$T' metrics -q --rates 1 '${dat[0]}' | tail -n +2 | wc -l | grep -qx 141"
+fi
+aorta=$DATA_DIR/vmtk-aorta/aorta-centerline.lines.csv
+if [ -f "$aorta" ]; then
+  "$T" metrics -q --rates 1 "$aorta" >"$work/aorta.tsv"
+  # 211 rows in line 0, one of them an exact repeat of its predecessor: 210 points are kept
+  check "aorta .lines.csv: 2 vessels of 210 (211 less one repeat) and 198 points" \
+    bash -c "[ \"\$(cut -f4 '$work/aorta.tsv' | tail -n +2 | tr '\n' ' ')\" = '210 198 ' ]"
+  check "sufficient (rotation) finds a rate for both aorta vessels" \
+    bash -c "'$T' sufficient -q --integrator rotation '$aorta' | awk -F'\t' 'NR>1 && \$5!=\"none\" && \$6<\$4 {n++} END {exit n!=2}'"
+fi
+
+echo "e2e: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
