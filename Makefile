@@ -61,12 +61,18 @@ HEADERS := $(addprefix build/src/,geom.h $(addsuffix .h,$(MODULES)))
 LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES)))
 C_ROOTS := $(addprefix src/,geom.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES)) \
              tortuosity.c unit-tests.c)
-ROOTS   := $(C_ROOTS)
-.SECONDARY: $(addprefix build/,$(C_ROOTS))   # tangled files are kept, so cpif can compare
+SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
+           scripts/profile.gp
+ROOTS   := $(C_ROOTS) $(SCRIPTS)
+.SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
 build/src/%: paper.nw | $(BUILD_TOOLS)
 	@mkdir -p $(dir $@)
 	notangle -L -R'src/$*' paper.nw | cpif $@
+
+build/scripts/%: paper.nw | $(BUILD_TOOLS)
+	@mkdir -p $(dir $@)
+	notangle -R'scripts/$*' paper.nw | cpif $@
 
 build/obj/%.o: build/src/%.c $(HEADERS)
 	@mkdir -p $(dir $@)
@@ -99,11 +105,96 @@ lint: | $(BUILD_TOOLS)
 	  && echo "lint: chunk roots match the Makefile" \
 	  || { echo "lint: roots of paper.nw ('<') differ from the Makefile ('>'); a misspelled chunk name?"; exit 1; }
 
-# ---------------------------------------------------------------- report
+# ---------------------------------------------------------------- data -> results
+# Per-vessel results (large, not committed): every dataset of the manifest at every rate,
+# measured three ways. Each file is written atomically by tortuosity -o.
+DATASETS := $(shell awk -F'\t' 'NR > 1 { print $$1 }' data/manifest.tsv)
+RATES    := 1,2,10,100
+VARIANTS := backward-euler rotation filtered
+RUNS     := $(foreach v,$(VARIANTS),$(foreach d,$(DATASETS),build/results/$(v)/$(d).tsv))
+
+$(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity
+	@mkdir -p $(@D)
+	@variant=$(patsubst %/,%,$(dir $*)); dataset=$(notdir $*); \
+	pattern=$$(awk -F'\t' -v d="$$dataset" '$$1 == d { print $$2 }' data/manifest.tsv); \
+	shopt -s nullglob; files=('$(DATA_DIR)'/$$pattern); \
+	if [ $${#files[@]} -eq 0 ]; then \
+	  echo "$(DATA_DIR)/$$pattern: no such files; give the data directory as DATA_DIR=..." >&2; exit 2; fi; \
+	case $$variant in rotation) opts="--integrator rotation";; filtered) opts="--filter";; *) opts="";; esac; \
+	echo "measure $$dataset ($$variant): $${#files[@]} file(s)"; \
+	./bin/tortuosity metrics -q --rates $(RATES) $$opts -o $@ "$${files[@]}"
+
+# Phantoms: noise-free, and 100 with sigma = 0.01 mm (seed 1), both integrators.
+build/results/phantoms.tsv: bin/tortuosity
+	@mkdir -p $(@D)
+	@tmp=$$(mktemp -d); trap 'rm -rf "$$tmp"' EXIT; \
+	printf 'shape\tnoise\tintegrator\t' >$@.tmp; \
+	./bin/tortuosity phantom | ./bin/tortuosity metrics -q - | head -1 >>$@.tmp; \
+	for shape in circle helix salkowski; do \
+	  ./bin/tortuosity phantom --shape $$shape >$$tmp/clean.txt; \
+	  ./bin/tortuosity phantom --shape $$shape --sigma 0.01 --count 100 --seed 1 >$$tmp/noisy.txt; \
+	  for noise in clean noisy; do for integ in backward-euler rotation; do \
+	    ./bin/tortuosity metrics -q --rates $(RATES) --integrator $$integ $$tmp/$$noise.txt \
+	      | tail -n +2 | sed "s|^$$tmp/|$$shape\t$$noise\t$$integ\t|" >>$@.tmp; \
+	  done; done; \
+	done; mv $@.tmp $@
+
+build/results/phantom-truth.tsv: bin/tortuosity
+	@mkdir -p $(@D)
+	@{ printf 'shape\t'; ./bin/tortuosity phantom --truth | head -1; \
+	  for shape in circle helix salkowski; do \
+	    printf '%s\t' $$shape; ./bin/tortuosity phantom --shape $$shape --truth | tail -1; done; } >$@.tmp
+	@mv $@.tmp $@
+
+# One coronary centerline, sample by sample, for the profile figure.
+PROFILE_INPUT = $(DATA_DIR)/fdenz-coronary/centerlines.lines.csv
+build/results/profile-%-rotation.tsv: bin/tortuosity
+	@mkdir -p $(@D)
+	./bin/tortuosity profile -q --rate $* --vessel 0 --integrator rotation -o $@ '$(PROFILE_INPUT)'
+build/results/profile-%.tsv: bin/tortuosity
+	@mkdir -p $(@D)
+	./bin/tortuosity profile -q --rate $* --vessel 0 -o $@ '$(PROFILE_INPUT)'
+
+# ---------------------------------------------------------------- results -> tables
+# Small summaries, committed. R writes into a scratch folder; files are moved into place.
+RESULT_TABLES := results/phantom-table.tex results/recon-table.tex results/soa-acct-table.tex \
+                 results/correlation.tex results/numbers.tex
+RESULT_TSVS   := results/phantom-salkowski.tsv results/recon-error.tsv results/percent-shift.tsv \
+                 results/soa-acct.tsv results/correlation.tsv
+SOA_POINTS    := build/results/soa-acct-points.tsv
+
+$(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) \
+    build/results/phantoms.tsv build/results/phantom-truth.tsv | $(REPORT_TOOLS)
+	@rm -rf build/results/summary.tmp && mkdir -p build/results/summary.tmp results
+	Rscript --vanilla build/scripts/analysis.R build/results build/results/summary.tmp $(SOA_POINTS).tmp
+	@mv $(SOA_POINTS).tmp $(SOA_POINTS)
+	@for f in $(RESULT_TABLES) $(RESULT_TSVS); do mv build/results/summary.tmp/$$(basename $$f) $$f; done
+
+# ---------------------------------------------------------------- tables -> figures
+FIGURES := figures/recon-error.pdf figures/percent-shift.pdf figures/soa-acct.pdf figures/profile.pdf
+GNUPLOT  = gnuplot -e "datasets='$(DATASETS)'; outfile='$@.tmp'"
+
+figures/recon-error.pdf: build/scripts/recon-error.gp results/recon-error.tsv | $(REPORT_TOOLS)
+	@mkdir -p figures
+	$(GNUPLOT) -e "infile='results/recon-error.tsv'" $< && mv $@.tmp $@
+figures/percent-shift.pdf: build/scripts/percent-shift.gp results/percent-shift.tsv | $(REPORT_TOOLS)
+	@mkdir -p figures
+	$(GNUPLOT) -e "infile='results/percent-shift.tsv'" $< && mv $@.tmp $@
+figures/soa-acct.pdf: build/scripts/soa-acct.gp $(SOA_POINTS) | $(REPORT_TOOLS)
+	@mkdir -p figures
+	$(GNUPLOT) -e "infile='$(SOA_POINTS)'" $< && mv $@.tmp $@
+PROFILES := $(foreach r,1 10,build/results/profile-$(r).tsv build/results/profile-$(r)-rotation.tsv)
+figures/profile.pdf: build/scripts/profile.gp $(PROFILES) | $(REPORT_TOOLS)
+	@mkdir -p figures
+	$(GNUPLOT) -e "lowfile='build/results/profile-1.tsv'; highfile='build/results/profile-10.tsv'" \
+	  -e "lowrotfile='build/results/profile-1-rotation.tsv'; highrotfile='build/results/profile-10-rotation.tsv'" \
+	  $< && mv $@.tmp $@
+
+# ---------------------------------------------------------------- tables and figures -> report
 build/paper.tex: paper.nw | $(REPORT_TOOLS)
 	noweave -delay -index paper.nw | cpif $@
 
-build/paper.pdf: build/paper.tex
+build/paper.pdf: build/paper.tex $(RESULT_TABLES) $(FIGURES)
 	cd build && for pass in 1 2 3; do \
 	  pdflatex -interaction=nonstopmode -halt-on-error paper.tex >pdflatex.log \
 	  || { tail -30 pdflatex.log; exit 1; }; done
@@ -127,4 +218,4 @@ bench: bin/tortuosity
 # ---------------------------------------------------------------- clean
 .PHONY: clean
 clean:
-	rm -rf bin build/src build/obj build/unit-tests build/*.log build/paper.* build/*.tsv
+	rm -rf bin build/src build/obj build/scripts build/results build/unit-tests build/*.log build/paper.* build/*.tsv
