@@ -32,14 +32,17 @@ REPORT_PACKAGES := gnuplot-nox r-base-core texlive-latex-base texlive-latex-reco
 BUILD_TOOLS  := build/.tools-build
 REPORT_TOOLS := build/.tools-report
 
+# $(call ensure_packages,PACKAGES,COMMANDS,FILES): install PACKAGES unless every command and file exists.
 define ensure_packages
-if ! $(2); then \
+missing=; for t in $(2); do command -v $$t >/dev/null || missing="$$missing $$t"; done; \
+for f in $(3); do [ -e $$f ] || missing="$$missing $$f"; done; \
+if [ -n "$$missing" ]; then \
   if [ "$$(id -u)" = 0 ]; then \
-    echo "installing: $(1)"; \
+    echo "missing:$$missing; installing: $(1)"; \
     apt-get update -qq; \
     DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $(1) >/dev/null; \
   else \
-    echo "Some tools are missing. Install them with:"; \
+    echo "missing:$$missing. Install with:"; \
     echo "  sudo apt-get install $(1)"; \
     exit 1; \
   fi; \
@@ -48,11 +51,12 @@ endef
 
 $(BUILD_TOOLS):
 	@mkdir -p build
-	@$(call ensure_packages,$(BUILD_PACKAGES),command -v notangle cpif noroots $(CC) >/dev/null && [ -e /usr/include/gsl/gsl_bspline.h ])
+	@$(call ensure_packages,$(BUILD_PACKAGES),notangle cpif noroots $(CC),/usr/include/gsl/gsl_bspline.h)
 	@touch $@
 
 $(REPORT_TOOLS): | $(BUILD_TOOLS)
-	@$(call ensure_packages,$(REPORT_PACKAGES),command -v gnuplot Rscript pdflatex noweave >/dev/null && kpsewhich booktabs.sty >/dev/null)
+	@$(call ensure_packages,$(REPORT_PACKAGES),gnuplot Rscript pdflatex noweave kpsewhich,)
+	@kpsewhich booktabs.sty >/dev/null || $(call ensure_packages,$(REPORT_PACKAGES),no-such-command-forces-install,)
 	@touch $@
 
 # ---------------------------------------------------------------- tangle
