@@ -31,6 +31,7 @@ REPORT_PACKAGES := gnuplot-nox r-base-core texlive-latex-base texlive-latex-reco
                    texlive-fonts-recommended lmodern
 BUILD_TOOLS  := build/.tools-build
 REPORT_TOOLS := build/.tools-report
+TEXMF        := /usr/share/texlive/texmf-dist/tex/latex
 
 # $(call ensure_packages,PACKAGES,COMMANDS,FILES): install PACKAGES unless every command and file exists.
 define ensure_packages
@@ -55,8 +56,7 @@ $(BUILD_TOOLS):
 	@touch $@
 
 $(REPORT_TOOLS): | $(BUILD_TOOLS)
-	@$(call ensure_packages,$(REPORT_PACKAGES),gnuplot Rscript pdflatex noweave kpsewhich,)
-	@kpsewhich booktabs.sty >/dev/null || $(call ensure_packages,$(REPORT_PACKAGES),no-such-command-forces-install,)
+	@$(call ensure_packages,$(REPORT_PACKAGES),gnuplot Rscript pdflatex noweave,$(TEXMF)/booktabs/booktabs.sty)
 	@touch $@
 
 # ---------------------------------------------------------------- tangle
