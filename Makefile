@@ -177,22 +177,25 @@ $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS
 # ---------------------------------------------------------------- tables -> figures
 FIGURES := figures/recon-error.pdf figures/percent-shift.pdf figures/soa-acct.pdf figures/profile.pdf
 GNUPLOT  = gnuplot -e "datasets='$(DATASETS)'; outfile='$@.tmp'"
+# cairo 1.16 stamps the wall-clock time; replace it (same length) so figures are byte-identical.
+PDF_DATE = $(shell date -u -d @$(SOURCE_DATE_EPOCH) +%Y%m%d%H%M%S)
+FIX_DATE = perl -0777 -pi -e 's{/CreationDate \(D:\d{14}Z\)}{/CreationDate (D:$(PDF_DATE)Z)}' $@.tmp
 
 figures/recon-error.pdf: build/scripts/recon-error.gp results/recon-error.tsv | $(REPORT_TOOLS)
 	@mkdir -p figures
-	$(GNUPLOT) -e "infile='results/recon-error.tsv'" $< && mv $@.tmp $@
+	$(GNUPLOT) -e "infile='results/recon-error.tsv'" $< && $(FIX_DATE) && mv $@.tmp $@
 figures/percent-shift.pdf: build/scripts/percent-shift.gp results/percent-shift.tsv | $(REPORT_TOOLS)
 	@mkdir -p figures
-	$(GNUPLOT) -e "infile='results/percent-shift.tsv'" $< && mv $@.tmp $@
+	$(GNUPLOT) -e "infile='results/percent-shift.tsv'" $< && $(FIX_DATE) && mv $@.tmp $@
 figures/soa-acct.pdf: build/scripts/soa-acct.gp $(SOA_POINTS) | $(REPORT_TOOLS)
 	@mkdir -p figures
-	$(GNUPLOT) -e "infile='$(SOA_POINTS)'" $< && mv $@.tmp $@
+	$(GNUPLOT) -e "infile='$(SOA_POINTS)'" $< && $(FIX_DATE) && mv $@.tmp $@
 PROFILES := $(foreach r,1 10,build/results/profile-$(r).tsv build/results/profile-$(r)-rotation.tsv)
 figures/profile.pdf: build/scripts/profile.gp $(PROFILES) | $(REPORT_TOOLS)
 	@mkdir -p figures
 	$(GNUPLOT) -e "lowfile='build/results/profile-1.tsv'; highfile='build/results/profile-10.tsv'" \
 	  -e "lowrotfile='build/results/profile-1-rotation.tsv'; highrotfile='build/results/profile-10-rotation.tsv'" \
-	  $< && mv $@.tmp $@
+	  $< && $(FIX_DATE) && mv $@.tmp $@
 
 # ---------------------------------------------------------------- tables and figures -> report
 build/paper.tex: paper.nw | $(REPORT_TOOLS)
