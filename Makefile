@@ -5,6 +5,8 @@
 #   make reproduce    data -> results/ -> figures/ -> build/paper.pdf
 #   make report       build/paper.pdf (runs whatever results it needs)
 #   make bench        timing of the full BraVa set
+#   make check-sanitize   the tests under AddressSanitizer and UndefinedBehaviorSanitizer
+#   make fuzz         libFuzzer on each reader (FUZZ_SECONDS per reader, default 150)
 #   make lint         chunk roots of paper.nw against the list below
 #   make clean
 #
@@ -64,7 +66,7 @@ MODULES := vessel readers pspline stencil metrics frenet phantom pipeline
 HEADERS := $(addprefix build/src/,geom.h $(addsuffix .h,$(MODULES)))
 LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES)))
 C_ROOTS := $(addprefix src/,geom.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES)) \
-             tortuosity.c unit-tests.c)
+             tortuosity.c unit-tests.c fuzz-readers.c)
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp
 ROOTS   := $(C_ROOTS) $(SCRIPTS)
@@ -102,6 +104,68 @@ check: build/unit-tests bin/tortuosity
 	@DATA_DIR='$(DATA_DIR)' bash tests/end-to-end.sh bin/tortuosity | tee build/end-to-end.log
 	@awk '/^(e2e: )?[0-9]+ passed, [0-9]+ failed$$/ { sub(/^e2e: /, ""); p += $$1; f += $$3 } \
 	      END { printf "check: %d passed, %d failed\n", p, f; exit f > 0 }' build/unit-tests.log build/end-to-end.log
+
+# The same suite with AddressSanitizer and UndefinedBehaviorSanitizer; any report is fatal.
+SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES)))
+
+build/sanitize/%.o: build/src/%.c $(HEADERS)
+	@mkdir -p $(dir $@)
+	$(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS) -Ibuild/src -c -o $@ $<
+build/sanitize/unit-tests: build/sanitize/unit-tests.o $(SAN_OBJ)
+	$(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS) -o $@ $^ $(LDLIBS)
+build/sanitize/tortuosity: build/sanitize/tortuosity.o $(SAN_OBJ)
+	$(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS) -o $@ $^ $(LDLIBS)
+
+.PHONY: check-sanitize
+check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity
+	@echo "== unit tests, sanitized"
+	@ASAN_OPTIONS=detect_leaks=1 ./build/sanitize/unit-tests | tee build/sanitize/unit-tests.log
+	@echo "== end-to-end checks, sanitized"
+	@ASAN_OPTIONS=detect_leaks=1 DATA_DIR='$(DATA_DIR)' bash tests/end-to-end.sh build/sanitize/tortuosity \
+	  | tee build/sanitize/end-to-end.log
+	@awk '/^(e2e: )?[0-9]+ passed, [0-9]+ failed$$/ { sub(/^e2e: /, ""); p += $$1; f += $$3 } \
+	      END { printf "check-sanitize: %d passed, %d failed\n", p, f; exit f > 0 }' \
+	      build/sanitize/unit-tests.log build/sanitize/end-to-end.log
+
+# ---------------------------------------------------------------- fuzzing
+# One libFuzzer harness per reader, seeded from the real files; crashes land in build/fuzz/.
+FUZZ_SECONDS ?= 150
+FUZZ_FORMATS := text csv swc angicart
+FUZZ_TOOLS   := build/.tools-fuzz
+LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(MODULES)))
+
+$(FUZZ_TOOLS): | $(BUILD_TOOLS)
+	@$(call ensure_packages,clang libclang-rt-14-dev,clang,)
+	@touch $@
+
+build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(FUZZ_TOOLS)
+	@mkdir -p $(dir $@)
+	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -D_GNU_SOURCE \
+	  -DFUZZ_FORMAT=FORMAT_$(shell echo $* | tr a-z A-Z) -Ibuild/src -o $@ $< $(LIB_SOURCES) $(LDLIBS)
+
+build/fuzz/corpus-%/.seeded: data/manifest.tsv bin/tortuosity
+	@mkdir -p $(dir $@)
+	@shopt -s nullglob; n=0; \
+	case $* in \
+	  swc) files=('$(DATA_DIR)'/brava-*/*.swc '$(DATA_DIR)'/brava-*/*/*.swc '$(DATA_DIR)'/brava-*/*/*/*.swc);; \
+	  csv) files=('$(DATA_DIR)'/*/*.csv);; \
+	  angicart) files=('$(DATA_DIR)'/*/*.dat);; \
+	  text) ./bin/tortuosity phantom --shape salkowski --sigma 0.01 >$(dir $@)/salkowski.txt; \
+	        ./bin/tortuosity phantom --shape helix --count 3 --points 12 >$(dir $@)/helices.txt; files=();; \
+	esac; \
+	for f in "$${files[@]:0:12}"; do head -c 8000 "$$f" >$(dir $@)/seed-$$n; n=$$((n + 1)); done; \
+	touch $@
+
+.PHONY: fuzz
+fuzz: $(addprefix build/fuzz/fuzz-,$(FUZZ_FORMATS)) $(foreach f,$(FUZZ_FORMATS),build/fuzz/corpus-$(f)/.seeded)
+	@for f in $(FUZZ_FORMATS); do \
+	  echo "fuzz $$f for $(FUZZ_SECONDS) s"; \
+	  ./build/fuzz/fuzz-$$f -max_total_time=$(FUZZ_SECONDS) -max_len=16384 -print_final_stats=1 \
+	    -artifact_prefix=build/fuzz/crash-$$f- build/fuzz/corpus-$$f >build/fuzz/$$f.log 2>&1 \
+	    || { tail -40 build/fuzz/$$f.log; echo "fuzz $$f: crash, input saved in build/fuzz/"; exit 1; }; \
+	  grep -E 'stat::number_of_executed_units|stat::peak_rss_mb' build/fuzz/$$f.log | sed "s/^/fuzz $$f: /"; \
+	done
 
 .PHONY: lint
 lint: | $(BUILD_TOOLS)
@@ -225,4 +289,5 @@ bench: bin/tortuosity
 # ---------------------------------------------------------------- clean
 .PHONY: clean
 clean:
-	rm -rf bin build/src build/obj build/scripts build/results build/unit-tests build/*.log build/paper.* build/*.tsv
+	rm -rf bin build/src build/obj build/scripts build/results build/sanitize build/fuzz build/unit-tests \
+	  build/*.log build/paper.* build/*.tsv

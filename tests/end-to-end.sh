@@ -82,6 +82,15 @@ check "-o leaves no temporary file" bash -c "! ls '$work' | grep -q '\\.tmp\\.'"
 check "same seed gives the same phantoms" bash -c "'$T' phantom --count 3 --sigma 0.1 --seed 9 | cmp - <('$T' phantom --count 3 --sigma 0.1 --seed 9)"
 check "profile has samples and reconstruction" bash -c "'$T' profile --rate 10 '$work/salk.txt' | awk -F'\t' 'NR>1 && \$18==1 {n++} END {exit !(n > 300)}'"
 
+"$T" phantom --shape helix --points 1000000 >"$work/long.txt"
+check "a vessel of 10^6 points is measured (raw and 1X) with exact ACCT" bash -c \
+  "'$T' metrics -q --rates raw,1 '$work/long.txt' | awk -F'\t' 'NR>1 && \$NF==\"ok\" && \$14>0.2235 && \$14<0.2237 {n++} END {exit n!=2}'"
+printf '0 0 0\n0 0 0\n0 0 0\n\n0 0 0\n1 0 0\n\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n4 0 0\n5 0 0\n' >"$work/degenerate.txt"
+check "degenerate vessels get a status, not NaN" bash -c \
+  "'$T' metrics -q --rates 1,10 '$work/degenerate.txt' | cut -f4- | grep -qiE 'nan|inf' && exit 1; \
+   '$T' metrics -q --rates 1,10 '$work/degenerate.txt' | awk -F'\t' 'NR>1 {print \$NF}' | tr '\n' ' ' \
+   | grep -qx 'too-few-points too-few-points too-few-points too-few-points too-short ok '"
+
 # ---------------------------------------------------------------- real data (where present)
 if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ]; then
   brava=("$DATA_DIR"/brava-3darteryvis/allscans/*/*.swc)
