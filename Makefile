@@ -175,10 +175,10 @@ lint: | $(BUILD_TOOLS)
 
 # ---------------------------------------------------------------- data -> results
 # Per-vessel results (large, not committed): every dataset of the manifest at every rate,
-# measured three ways. Each file is written atomically by tortuosity -o.
+# measured four ways. Each file is written atomically by tortuosity -o.
 DATASETS := $(shell awk -F'\t' 'NR > 1 { print $$1 }' data/manifest.tsv)
 RATES    := 1,2,10,100
-VARIANTS := backward-euler rotation filtered
+VARIANTS := backward-euler rotation bishop filtered
 RUNS     := $(foreach v,$(VARIANTS),$(foreach d,$(DATASETS),build/results/$(v)/$(d).tsv))
 
 $(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity
@@ -188,11 +188,11 @@ $(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity
 	shopt -s nullglob; files=('$(DATA_DIR)'/$$pattern); \
 	if [ $${#files[@]} -eq 0 ]; then \
 	  echo "$(DATA_DIR)/$$pattern: no such files; give the data directory as DATA_DIR=..." >&2; exit 2; fi; \
-	case $$variant in rotation) opts="--integrator rotation";; filtered) opts="--filter";; *) opts="";; esac; \
+	case $$variant in rotation|bishop) opts="--integrator $$variant";; filtered) opts="--filter";; *) opts="";; esac; \
 	echo "measure $$dataset ($$variant): $${#files[@]} file(s)"; \
 	./bin/tortuosity metrics -q --rates $(RATES) $$opts -o $@ "$${files[@]}"
 
-# Phantoms: noise-free, and 100 with sigma = 0.01 mm (seed 1), both integrators.
+# Phantoms: noise-free, and 100 with sigma = 0.01 mm (seed 1), three integrators.
 build/results/phantoms.tsv: bin/tortuosity
 	@mkdir -p $(@D)
 	@tmp=$$(mktemp -d); trap 'rm -rf "$$tmp"' EXIT; \
@@ -201,7 +201,7 @@ build/results/phantoms.tsv: bin/tortuosity
 	for shape in circle helix salkowski; do \
 	  ./bin/tortuosity phantom --shape $$shape >$$tmp/clean.txt; \
 	  ./bin/tortuosity phantom --shape $$shape --sigma 0.01 --count 100 --seed 1 >$$tmp/noisy.txt; \
-	  for noise in clean noisy; do for integ in backward-euler rotation; do \
+	  for noise in clean noisy; do for integ in backward-euler rotation bishop; do \
 	    ./bin/tortuosity metrics -q --rates $(RATES) --integrator $$integ $$tmp/$$noise.txt \
 	      | tail -n +2 | sed "s|^$$tmp/|$$shape\t$$noise\t$$integ\t|" >>$@.tmp; \
 	  done; done; \
