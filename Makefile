@@ -22,7 +22,7 @@ DATA_DIR ?= ../shared/data
 export SOURCE_DATE_EPOCH ?= 1795305600
 
 CC      ?= cc
-CFLAGS  ?= -O2
+CFLAGS  ?= -O3
 CFLAGS  += -std=c11 -D_GNU_SOURCE -Wall -Wextra -fopenmp
 LDLIBS  := -lgsl -lgslcblas -lm
 
@@ -80,7 +80,8 @@ build/scripts/%: paper.nw | $(BUILD_TOOLS)
 	@mkdir -p $(dir $@)
 	notangle -R'scripts/$*' paper.nw | cpif $@
 
-build/obj/%.o: build/src/%.c $(HEADERS)
+# Objects also depend on the Makefile, so a change of flags rebuilds them.
+build/obj/%.o: build/src/%.c $(HEADERS) Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Ibuild/src -c -o $@ $<
 
@@ -109,7 +110,7 @@ check: build/unit-tests bin/tortuosity
 SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
 SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES)))
 
-build/sanitize/%.o: build/src/%.c $(HEADERS)
+build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS) -Ibuild/src -c -o $@ $<
 build/sanitize/unit-tests: build/sanitize/unit-tests.o $(SAN_OBJ)
