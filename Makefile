@@ -284,7 +284,8 @@ bench: bin/tortuosity
 	  start=$$(date +%s.%N); \
 	  ./bin/tortuosity metrics -q --jobs $$jobs --rates 1,2,10,100 $$files >build/bench-$$jobs.tsv; \
 	  end=$$(date +%s.%N); \
-	  echo "bench: BraVa $$(($$(wc -l <build/bench-$$jobs.tsv) - 1)) vessel-rates, $$jobs thread(s): $$(echo "$$end - $$start" | bc) s"; \
+	  echo "bench: BraVa $$(($$(wc -l <build/bench-$$jobs.tsv) - 1)) vessel-rates, $$jobs thread(s):" \
+	       "$$(awk -v a=$$start -v b=$$end 'BEGIN { printf "%.2f", b - a }') s"; \
 	done; cmp build/bench-1.tsv build/bench-2.tsv && echo "bench: output identical for 1 and 2 threads"
 
 # ---------------------------------------------------------------- clean
