@@ -193,6 +193,21 @@ $(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity
 	echo "measure $$dataset ($$variant): $${#files[@]} file(s)"; \
 	./bin/tortuosity metrics -q --rates $(RATES) $$opts -o $@ "$${files[@]}"
 
+# The smallest sufficient rate per vessel, for the datasets with radii, three integrators.
+RADII_DATASETS := $(shell awk -F'\t' 'NR > 1 && $$5 != "none" { print $$1 }' data/manifest.tsv)
+INTEGRATORS    := backward-euler rotation bishop
+SUFFICIENT     := $(foreach i,$(INTEGRATORS),$(foreach d,$(RADII_DATASETS),build/results/sufficient/$(i)/$(d).tsv))
+
+$(SUFFICIENT): build/results/sufficient/%.tsv: data/manifest.tsv bin/tortuosity
+	@mkdir -p $(@D)
+	@integrator=$(patsubst %/,%,$(dir $*)); dataset=$(notdir $*); \
+	pattern=$$(awk -F'\t' -v d="$$dataset" '$$1 == d { print $$2 }' data/manifest.tsv); \
+	shopt -s nullglob; files=('$(DATA_DIR)'/$$pattern); \
+	if [ $${#files[@]} -eq 0 ]; then \
+	  echo "$(DATA_DIR)/$$pattern: no such files; give the data directory as DATA_DIR=..." >&2; exit 2; fi; \
+	echo "sufficient rate: $$dataset ($$integrator)"; \
+	./bin/tortuosity sufficient -q --integrator $$integrator -o $@ "$${files[@]}"
+
 # Phantoms: noise-free, and 100 with sigma = 0.01 mm (seed 1), three integrators.
 build/results/phantoms.tsv: bin/tortuosity
 	@mkdir -p $(@D)
@@ -227,15 +242,16 @@ build/results/profile-%.tsv: bin/tortuosity
 # ---------------------------------------------------------------- results -> tables
 # Small summaries, committed. R writes into a scratch folder; files are moved into place.
 RESULT_TABLES := results/phantom-table.tex results/recon-table.tex results/soa-acct-table.tex \
-                 results/correlation.tex results/numbers.tex
+                 results/correlation.tex results/sufficient-table.tex results/numbers.tex
 RESULT_TSVS   := results/phantom-salkowski.tsv results/recon-error.tsv results/percent-shift.tsv \
-                 results/soa-acct.tsv results/correlation.tsv
+                 results/soa-acct.tsv results/correlation.tsv results/sufficient.tsv
 SOA_POINTS    := build/results/soa-acct-points.tsv
 
-$(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) \
+$(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) $(SUFFICIENT) \
     build/results/phantoms.tsv build/results/phantom-truth.tsv | $(REPORT_TOOLS)
 	@rm -rf build/results/summary.tmp && mkdir -p build/results/summary.tmp results
-	Rscript --vanilla build/scripts/analysis.R build/results build/results/summary.tmp $(SOA_POINTS).tmp
+	Rscript --vanilla build/scripts/analysis.R build/results build/results/summary.tmp $(SOA_POINTS).tmp \
+	  '$(RADII_DATASETS)'
 	@mv $(SOA_POINTS).tmp $(SOA_POINTS)
 	@for f in $(RESULT_TABLES) $(RESULT_TSVS); do mv build/results/summary.tmp/$$(basename $$f) $$f; done
 

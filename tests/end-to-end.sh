@@ -111,7 +111,7 @@ if [ -f "$aorta" ]; then
   check "aorta .lines.csv: 2 vessels of 210 (211 less one repeat) and 198 points" \
     bash -c "[ \"\$(cut -f4 '$work/aorta.tsv' | tail -n +2 | tr '\n' ' ')\" = '210 198 ' ]"
   check "sufficient (rotation) finds a rate for both aorta vessels" \
-    bash -c "'$T' sufficient -q --integrator rotation '$aorta' | awk -F'\t' 'NR>1 && \$5!=\"none\" && \$6<\$4 {n++} END {exit n!=2}'"
+    bash -c "'$T' sufficient -q --integrator rotation '$aorta' | awk -F'\t' 'NR>1 && \$6!=\"none\" && \$8<\$5 {n++} END {exit n!=2}'"
 fi
 
 echo "e2e: $passed passed, $failed failed"
