@@ -183,15 +183,21 @@ RATES    := 1,2,10,100
 VARIANTS := backward-euler rotation bishop filtered
 RUNS     := $(foreach v,$(VARIANTS),$(foreach d,$(DATASETS),build/results/$(v)/$(d).tsv))
 
+# In a recipe for build/results/.../METHOD/DATASET.tsv: set shell variables method, dataset and
+# files (the dataset's files under DATA_DIR, from the manifest), or stop when there are none.
+define dataset_files
+method=$(patsubst %/,%,$(dir $*)); dataset=$(notdir $*); \
+pattern=$$(awk -F'\t' -v d="$$dataset" '$$1 == d { print $$2 }' data/manifest.tsv); \
+shopt -s nullglob; files=('$(DATA_DIR)'/$$pattern); \
+if [ $${#files[@]} -eq 0 ]; then \
+  echo "$(DATA_DIR)/$$pattern: no such files; give the data directory as DATA_DIR=..." >&2; exit 2; fi
+endef
+
 $(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity
 	@mkdir -p $(@D)
-	@variant=$(patsubst %/,%,$(dir $*)); dataset=$(notdir $*); \
-	pattern=$$(awk -F'\t' -v d="$$dataset" '$$1 == d { print $$2 }' data/manifest.tsv); \
-	shopt -s nullglob; files=('$(DATA_DIR)'/$$pattern); \
-	if [ $${#files[@]} -eq 0 ]; then \
-	  echo "$(DATA_DIR)/$$pattern: no such files; give the data directory as DATA_DIR=..." >&2; exit 2; fi; \
-	case $$variant in rotation|bishop) opts="--integrator $$variant";; filtered) opts="--filter";; *) opts="";; esac; \
-	echo "measure $$dataset ($$variant): $${#files[@]} file(s)"; \
+	@$(dataset_files); \
+	case $$method in rotation|bishop) opts="--integrator $$method";; filtered) opts="--filter";; *) opts="";; esac; \
+	echo "measure $$dataset ($$method): $${#files[@]} file(s)"; \
 	./bin/tortuosity metrics -q --rates $(RATES) $$opts -o $@ "$${files[@]}"
 
 # The smallest sufficient rate per vessel, for the datasets with radii, three integrators.
@@ -201,13 +207,9 @@ SUFFICIENT     := $(foreach i,$(INTEGRATORS),$(foreach d,$(RADII_DATASETS),build
 
 $(SUFFICIENT): build/results/sufficient/%.tsv: data/manifest.tsv bin/tortuosity
 	@mkdir -p $(@D)
-	@integrator=$(patsubst %/,%,$(dir $*)); dataset=$(notdir $*); \
-	pattern=$$(awk -F'\t' -v d="$$dataset" '$$1 == d { print $$2 }' data/manifest.tsv); \
-	shopt -s nullglob; files=('$(DATA_DIR)'/$$pattern); \
-	if [ $${#files[@]} -eq 0 ]; then \
-	  echo "$(DATA_DIR)/$$pattern: no such files; give the data directory as DATA_DIR=..." >&2; exit 2; fi; \
-	echo "sufficient rate: $$dataset ($$integrator)"; \
-	./bin/tortuosity sufficient -q --integrator $$integrator -o $@ "$${files[@]}"
+	@$(dataset_files); \
+	echo "sufficient rate: $$dataset ($$method)"; \
+	./bin/tortuosity sufficient -q --integrator $$method -o $@ "$${files[@]}"
 
 # Phantoms: noise-free, and 100 with sigma = 0.01 mm (seed 1), three integrators.
 build/results/phantoms.tsv: bin/tortuosity
