@@ -89,7 +89,18 @@ printf '0 0 0\n0 0 0\n0 0 0\n\n0 0 0\n1 0 0\n\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n4 0 0
 check "degenerate vessels get a status, not NaN" bash -c \
   "'$T' metrics -q --rates 1,10 '$work/degenerate.txt' | cut -f4- | grep -qiE 'nan|inf' && exit 1; \
    '$T' metrics -q --rates 1,10 '$work/degenerate.txt' | awk -F'\t' 'NR>1 {print \$NF}' | tr '\n' ' ' \
-   | grep -qx 'too-few-points too-few-points too-few-points too-few-points too-short ok '"
+   | grep -qx 'too-few-points too-few-points no-curvature no-curvature ok ok '"
+check "a two-point vessel has L, D and D1 but no curvature" bash -c \
+  "'$T' metrics -q --rates 1 '$work/degenerate.txt' | awk -F'\t' 'NR==3 && \$6==0.8 && \$7==1 && \$8==0 && \$9==\"\" {ok=1} END {exit !ok}'"
+profile_ends_defined() {   # every sample has a speed; tau, N, B are empty exactly where the frame is undefined
+  "$T" profile --rate 1 "$work/degenerate.txt" --vessel 3 >"$work/straight-profile.tsv" 2>/dev/null
+  "$T" profile --rate 1 "$work/salk.txt" >"$work/salk-profile.tsv" || return 1
+  awk -F'\t' 'NR > 1 && ($8 == "" || $8 == 0 || $7 == "" || $12 == "") { bad++ } END { exit bad > 0 }' "$work/salk-profile.tsv" \
+    || { echo "Salkowski profile at 1X has an undefined or zero value"; return 1; }
+  awk -F'\t' 'NR > 1 && ($6 != 0 || $7 != "" || $12 != "" || $8 == "") { bad++ } END { exit bad > 0 }' "$work/straight-profile.tsv" \
+    || { echo "straight profile: tau, N or B written where undefined"; return 1; }
+}
+check "profile: derivatives at every sample, undefined values empty" profile_ends_defined
 
 # ---------------------------------------------------------------- real data (where present)
 if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ]; then
@@ -99,6 +110,7 @@ if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ]; then
     awk -F'\t' 'NR>1 && \$3==\"1\"' '$work/brava.tsv' | wc -l | grep -qx 10496"
   check "BraVa at 1,2,10,100X: no NaN or inf anywhere" bash -c "! cut -f4- '$work/brava.tsv' | grep -qiE 'nan|inf'"
   check "BraVa: every row has a status" bash -c "awk -F'\t' 'NR>1 && \$NF==\"\" {bad++} END {exit bad>0}' '$work/brava.tsv'"
+  check "BraVa: D >= 1 on every row that has D" bash -c "awk -F'\t' 'NR>1 && \$7!=\"\" && \$7<1 {bad++} END {exit bad>0}' '$work/brava.tsv'"
 fi
 dat=("$DATA_DIR"/brummer-tortuosity-R/*.dat)
 if [ -f "${dat[0]}" ]; then
@@ -110,6 +122,17 @@ if [ -f "$aorta" ]; then
   # 211 rows in line 0, one of them an exact repeat of its predecessor: 210 points are kept
   check "aorta .lines.csv: 2 vessels of 210 (211 less one repeat) and 198 points" \
     bash -c "[ \"\$(cut -f4 '$work/aorta.tsv' | tail -n +2 | tr '\n' ' ')\" = '210 198 ' ]"
+  # VMTK's vtkvmtkCenterlineGeometry on aorta-centerline.vtp: Length and Tortuosity (= D - 1)
+  whole_polyline_as_vmtk() {
+    "$T" metrics -q --rates raw --trim 0 "$aorta" >"$work/aorta-raw.tsv" || return 1
+    local L D1
+    L=($(column L "$work/aorta-raw.tsv")); D1=($(column D1 "$work/aorta-raw.tsv"))
+    near "${L[0]}" 77.81202643 1e-6 && near "${L[1]}" 76.15578820 1e-6 || { echo "L ${L[*]}"; return 1; }
+    awk -v a="${D1[0]}" -v b="${D1[1]}" 'BEGIN { exit !(a - 0.025062208861 < 1e-6 && 0.025062208861 - a < 1e-6 &&
+                                                     b - 0.022702864636 < 1e-6 && 0.022702864636 - b < 1e-6) }' \
+      || { echo "D1 ${D1[*]}"; return 1; }
+  }
+  check "aorta raw --trim 0: L and D - 1 as VMTK publishes them (1e-6)" whole_polyline_as_vmtk
   check "sufficient (rotation) finds a rate for both aorta vessels" \
     bash -c "'$T' sufficient -q --integrator rotation '$aorta' | awk -F'\t' 'NR>1 && \$6!=\"none\" && \$8<\$5 {n++} END {exit n!=2}'"
 fi
