@@ -23,6 +23,18 @@ near() {    # near A B RELTOL
   awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t * (b < 0 ? -b : b)) }'
 }
 
+# ---------------------------------------------------------------- the build
+# Plain 'make' in a fresh clone builds the program (REPO: the repository, given by 'make check').
+if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
+  make_builds_program() {
+    git clone -q "$REPO" "$work/clone" || return 1
+    cp "$REPO/paper.nw" "$REPO/Makefile" "$work/clone/"        # the working copy, committed or not
+    make -s -C "$work/clone" >"$work/make.log" 2>&1 || { tail -5 "$work/make.log"; return 1; }
+    "$work/clone/bin/tortuosity" --help >/dev/null
+  }
+  check "plain 'make' in a fresh clone builds bin/tortuosity" make_builds_program
+fi
+
 # ---------------------------------------------------------------- command line
 check "tortuosity --help exits 0" "$T" --help
 for cmd in metrics profile sufficient phantom; do
