@@ -226,14 +226,19 @@ paper: $(REPORT_INPUTS) | $(REPORT_TOOLS)
 	$(run_pdflatex)
 
 # ---------------------------------------------------------------- tests
+# Each suite ends with "[name: ]N passed, N failed"; the totals decide.
+COUNT_LINE := /^([a-z0-9-]+: )?[0-9]+ passed, [0-9]+ failed$$/
 .PHONY: check
 check: build/unit-tests bin/tortuosity
 	@echo "== unit tests (paper.nw)"
 	@./build/unit-tests | tee build/unit-tests.log
 	@echo "== end-to-end checks (tests/)"
 	@DATA_DIR='$(DATA_DIR)' REPO='$(CURDIR)' bash tests/end-to-end.sh bin/tortuosity | tee build/end-to-end.log
-	@awk '/^(e2e: )?[0-9]+ passed, [0-9]+ failed$$/ { sub(/^e2e: /, ""); p += $$1; f += $$3 } \
-	      END { printf "check: %d passed, %d failed\n", p, f; exit f > 0 }' build/unit-tests.log build/end-to-end.log
+	@echo "== reliability checks (tests/)"
+	@bash tests/reliability.sh bin/tortuosity | tee build/reliability.log
+	@awk '$(COUNT_LINE) { p += $$(NF - 3); f += $$(NF - 1) } \
+	      END { printf "check: %d passed, %d failed\n", p, f; exit f > 0 }' \
+	      build/unit-tests.log build/end-to-end.log build/reliability.log
 
 # The same suite with AddressSanitizer and UndefinedBehaviorSanitizer; any report is fatal.
 SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
@@ -255,9 +260,11 @@ check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity
 	@echo "== end-to-end checks, sanitized"
 	@ASAN_OPTIONS=detect_leaks=1 DATA_DIR='$(DATA_DIR)' bash tests/end-to-end.sh build/sanitize/tortuosity \
 	  | tee build/sanitize/end-to-end.log
-	@awk '/^(e2e: )?[0-9]+ passed, [0-9]+ failed$$/ { sub(/^e2e: /, ""); p += $$1; f += $$3 } \
+	@echo "== reliability checks, sanitized"
+	@ASAN_OPTIONS=detect_leaks=1 bash tests/reliability.sh build/sanitize/tortuosity | tee build/sanitize/reliability.log
+	@awk '$(COUNT_LINE) { p += $$(NF - 3); f += $$(NF - 1) } \
 	      END { printf "check-sanitize: %d passed, %d failed\n", p, f; exit f > 0 }' \
-	      build/sanitize/unit-tests.log build/sanitize/end-to-end.log
+	      build/sanitize/unit-tests.log build/sanitize/end-to-end.log build/sanitize/reliability.log
 
 # ---------------------------------------------------------------- fuzzing
 # One libFuzzer harness per reader, seeded from the real files; crashes land in build/fuzz/.

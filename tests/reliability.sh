@@ -1,0 +1,418 @@
+#!/usr/bin/env bash
+# Reliability checks of the command line: -o onto links, FIFOs and devices, write
+# errors, temporary files, interrupted runs, silent merges and splits of vessels,
+# resource limits and escaping of odd bytes. Usage: tests/reliability.sh bin/tortuosity
+# Prints one line per check and "reliability: N passed, N failed" last; exits 0.
+# Runs as root in CI: no check ever names a real device as -o (links in $work only).
+set -u -o pipefail
+T=${1:?usage: reliability.sh path/to/tortuosity}
+case $T in /*) ;; */*) T=$PWD/$T ;; esac   # absolute: some checks run in subdirectories
+work=$(mktemp -d)
+trap 'chmod -R u+rwx "$work" 2>/dev/null; rm -rf "$work"' EXIT
+passed=0 failed=0
+
+check() {   # check NAME COMMAND...: passes when the command succeeds
+  local name=$1; shift
+  if "$@" >"$work/out" 2>&1; then passed=$((passed + 1)); echo "ok   $name"
+  else failed=$((failed + 1)); echo "FAIL $name"; sed 's/^/     /' "$work/out" | head -20; fi
+}
+
+skip() {    # skip NAME REASON: an ok line for a check that cannot run here
+  passed=$((passed + 1)); echo "ok   $1 (skipped: $2)"
+}
+
+run() {     # run COMMAND...: stdout in $work/stdout, stderr in $work/stderr, exit status in $rc
+  "$@" >"$work/stdout" 2>"$work/stderr"; rc=$?
+}
+
+in_dir() {  # in_dir DIR COMMAND...: runs the command in DIR
+  (cd "$1" && shift && exec "$@")
+}
+
+expect_rc() {   # expect_rc WANT: the last run exited with WANT
+  [ "$rc" = "$1" ] && return 0
+  echo "exit $rc, expected $1"; head -5 "$work/stderr"; return 1
+}
+
+has_message() { # the last run wrote a message on standard error
+  [ -s "$work/stderr" ] || { echo "no message on standard error"; return 1; }
+}
+
+refused() {     # refused WANT COMMAND...: exit WANT, a message, nothing on standard output
+  local want=$1; shift
+  run "$@"
+  expect_rc "$want" && has_message || return 1
+  [ ! -s "$work/stdout" ] || { echo "output despite the error:"; head -3 "$work/stdout"; return 1; }
+}
+
+alive() {   # alive PID: the child is running (not exited, not a zombie)
+  local stat
+  { read -r stat <"/proc/$1/stat"; } 2>/dev/null || return 1
+  stat=${stat##*) }
+  [ "${stat%% *}" != Z ]
+}
+
+reap() {    # reap PID SECONDS: waits for a child, its status; TERM, then KILL, and late=1 when it takes longer
+  local pid=$1 n=$(($2 * 10))
+  late=0
+  while [ "$n" -gt 0 ] && alive "$pid"; do sleep 0.1; n=$((n - 1)); done
+  if alive "$pid"; then
+    late=1
+    echo "process $pid still running after $2 s: terminated"
+    kill -TERM "$pid" 2>/dev/null; sleep 0.5; kill -KILL "$pid" 2>/dev/null
+  fi
+  wait "$pid"
+}
+
+elapsed_below() {   # elapsed_below T0 T1 SECONDS
+  awk -v a="$1" -v b="$2" -v s="$3" 'BEGIN { exit !(b - a < s) }'
+}
+
+same_bytes() {  # same_bytes EXPECTED GOT: GOT holds exactly the reference result
+  [ -s "$1" ] || { echo "reference output $1 is empty"; return 1; }
+  [ -f "$2" ] || { echo "$2 is missing or not a regular file"; return 1; }
+  cmp "$1" "$2" || { echo "$2 differs from the standard-output result"; head -3 "$2"; return 1; }
+}
+
+# ---------------------------------------------------------------- inputs
+"$T" phantom --shape helix --count 3 >"$work/h3.txt"
+"$T" metrics -q --rates 1 "$work/h3.txt" >"$work/h3.tsv"          # the reference result
+"$T" phantom --shape helix >"$work/h45.txt"
+"$T" phantom --shape helix --points 8 >"$work/pts8.txt"           # 8 points, for the CSV files
+"$T" phantom --shape helix --count 50 >"$work/h50.txt"
+"$T" phantom --shape helix | awk 'NF { print $0, 0.5; next } { print }' >"$work/radii.txt"
+# Slow input: about 10 s at --rates 1000 on one thread (25 s under AddressSanitizer), so a run
+# is still computing at 0.5 s; reading it takes 0.1 s (0.3 s under AddressSanitizer).
+"$T" phantom --shape helix --count 400 --points 300 >"$work/slow.txt"
+slow=(metrics -q --jobs 1 --rates 1000)
+printf '0 0 0\n1 x 0\n' >"$work/bad.txt"
+reference_has_rows() { [ "$(wc -l <"$work/h3.tsv")" = 4 ] || { echo "metrics of 3 helices: $(wc -l <"$work/h3.tsv") lines"; return 1; }; }
+check "reference: metrics of 3 helices to standard output has a header and 3 rows" reference_has_rows
+
+# ---------------------------------------------------------------- 1. -o onto special files
+o_symlink_to_file() {   # o_symlink_to_file TARGET-SPELLING: -o LINK writes through to F, LINK stays
+  local dir=$work/s-$2 target=$1
+  mkdir "$dir"; echo old >"$dir/F"; ln -s "$target" "$dir/LINK"
+  run "$T" metrics -q --rates 1 -o "$dir/LINK" "$work/h3.txt"
+  expect_rc 0 || return 1
+  [ -L "$dir/LINK" ] && [ "$(readlink "$dir/LINK")" = "$target" ] \
+    || { echo "LINK is no longer a symlink to F:"; ls -l "$dir"; return 1; }
+  same_bytes "$work/h3.tsv" "$dir/F"
+}
+check "-o LINK (absolute symlink to a regular file): exit 0, F has the result, LINK still -> F" \
+  o_symlink_to_file "$work/s-abs/F" abs
+check "-o LINK (relative symlink to a regular file): exit 0, F has the result, LINK still -> F" \
+  o_symlink_to_file F rel
+
+o_fifo() {
+  mkfifo "$work/fifo"
+  timeout 20 cat "$work/fifo" >"$work/fifo-got" &
+  local reader=$!
+  run timeout 20 "$T" metrics -q --rates 1 -o "$work/fifo" "$work/h3.txt"
+  reap "$reader" 2 >/dev/null
+  expect_rc 0 || return 1
+  [ -p "$work/fifo" ] || { echo "the FIFO was replaced:"; ls -l "$work/fifo"; return 1; }
+  same_bytes "$work/h3.tsv" "$work/fifo-got"
+}
+check "-o FIFO: exit 0, the reader gets the result, FIFO still a FIFO" o_fifo
+
+o_link_to_dev_null() {
+  ln -s /dev/null "$work/null-link"
+  run "$T" metrics -q --rates 1 -o "$work/null-link" "$work/h3.txt"
+  [ -c /dev/null ] || { echo "/dev/null IS NO LONGER A CHARACTER DEVICE"; ls -l /dev/null; return 1; }
+  expect_rc 0 || return 1
+  [ -L "$work/null-link" ] && [ "$(readlink "$work/null-link")" = /dev/null ] \
+    || { echo "the link was replaced:"; ls -l "$work/null-link"; return 1; }
+}
+check "-o LINK -> /dev/null: exit 0, /dev/null still a device, LINK still a symlink" o_link_to_dev_null
+
+# ---------------------------------------------------------------- 2. write errors
+write_error() {     # write_error COMMAND...: standard output on /dev/full; exit 1 with a message
+  "$@" >/dev/full 2>"$work/stderr"; rc=$?
+  expect_rc 1 && has_message
+}
+one_line_message() {
+  write_error "$@" || return 1
+  [ "$(wc -l <"$work/stderr")" = 1 ] || { echo "message of $(wc -l <"$work/stderr") lines:"; head -5 "$work/stderr"; return 1; }
+}
+o_dev_full() {      # -o through a link: a buggy rename then replaces the link, never /dev/full itself
+  ln -s /dev/full "$work/full-link"
+  run "$T" phantom --points 1000 -o "$work/full-link"
+  [ -c /dev/full ] || { echo "/dev/full IS NO LONGER A CHARACTER DEVICE"; ls -l /dev/full; return 1; }
+  expect_rc 1 && has_message
+}
+if [ -c /dev/full ]; then
+  check "phantom --points 1000 >/dev/full: exit 1, one-line message" one_line_message "$T" phantom --points 1000
+  check "phantom --truth >/dev/full (small output): exit 1, message" write_error "$T" phantom --truth
+  check "phantom --points 1000 -o LINK -> /dev/full: exit 1, message, /dev/full still a device" o_dev_full
+  check "metrics of 50 helices >/dev/full: exit 1, message" write_error "$T" metrics -q "$work/h50.txt"
+  check "profile >/dev/full: exit 1, message" write_error "$T" profile -q "$work/h50.txt"
+  check "sufficient >/dev/full (small output): exit 1, message" write_error "$T" sufficient -q "$work/radii.txt"
+else
+  for name in "phantom --points 1000 >/dev/full" "phantom --truth >/dev/full" "phantom -o LINK -> /dev/full" \
+              "metrics >/dev/full" "profile >/dev/full" "sufficient >/dev/full"; do
+    skip "$name" "no /dev/full"
+  done
+fi
+
+# ---------------------------------------------------------------- 3. temporary files
+o_long_name() {
+  local name; printf -v name '%*s' 254 ''; name=${name// /o}
+  run "$T" metrics -q --rates 1 -o "$work/$name" "$work/h3.txt"
+  expect_rc 0 && same_bytes "$work/h3.tsv" "$work/$name"
+}
+check "-o with a 254-character file name: exit 0, the file has the result" o_long_name
+
+o_leaves_only_result() {
+  mkdir "$work/d"
+  run "$T" metrics -q --rates 1 -o "$work/d/out.tsv" "$work/h3.txt"
+  expect_rc 0 || return 1
+  [ "$(ls -A "$work/d")" = out.tsv ] || { echo "directory holds:"; ls -A "$work/d"; return 1; }
+  same_bytes "$work/h3.tsv" "$work/d/out.tsv"
+}
+check "-o DIR/out.tsv: afterwards DIR holds only out.tsv" o_leaves_only_result
+
+planted_symlinks() {
+  local dir=$work/p pid last i
+  mkdir "$dir"; printf 'precious\n' >"$work/victim"
+  local pids=()
+  for ((pid = $$; pid <= $$ + 400; pid++)); do pids+=("$pid"); done
+  if read -r last </proc/sys/kernel/ns_last_pid 2>/dev/null; then   # a builtin: no process started
+    for ((pid = last + 1; pid <= last + 400; pid++)); do pids+=("$pid"); done
+  fi
+  # one process plants them all, so the PIDs the program gets next are still in the range
+  if command -v perl >/dev/null; then
+    perl -e '$v = shift; $d = shift; symlink($v, "$d/out.tsv.tmp.$_") for @ARGV' "$work/victim" "$dir" "${pids[@]}"
+  else
+    for pid in "${pids[@]}"; do ln -sf "$work/victim" "$dir/out.tsv.tmp.$pid"; done
+  fi
+  [ -L "$dir/out.tsv.tmp.$$" ] || { echo "could not plant the symlinks"; return 1; }
+  for i in 1 2 3; do
+    run "$T" metrics -q --rates 1 -o "$dir/out.tsv" "$work/h3.txt"
+    printf 'precious\n' | cmp -s - "$work/victim" || { echo "run $i wrote through a planted symlink: victim now"; head -3 "$work/victim"; return 1; }
+    expect_rc 0 || return 1
+    [ -f "$dir/out.tsv" ] && [ ! -L "$dir/out.tsv" ] || { echo "out.tsv is not a regular file:"; ls -l "$dir/out.tsv"; return 1; }
+    same_bytes "$work/h3.tsv" "$dir/out.tsv" || return 1
+  done
+}
+check "-o with planted symlinks out.tsv.tmp.PID -> victim: victim intact, out.tsv a regular file with the result" planted_symlinks
+
+killed_run_leaves_nothing() {   # killed_run_leaves_nothing SIGNAL
+  local sig=$1 dir=$work/k-$1 pid status
+  mkdir "$dir"
+  set -m    # a job of its own: a non-interactive shell starts background jobs with SIGINT ignored
+  "$T" "${slow[@]}" -o "$dir/out.tsv" "$work/slow.txt" 2>"$work/stderr" &
+  pid=$!
+  set +m
+  sleep 0.5
+  alive "$pid" || { wait "$pid"; echo "finished (exit $?) within 0.5 s: nothing was interrupted"; return 1; }
+  kill "-$sig" "$pid"
+  reap "$pid" 5; status=$?
+  [ "$late" = 0 ] || { echo "still running 5 s after SIG$sig"; return 1; }
+  [ "$status" != 0 ] || { echo "exit 0 after SIG$sig"; return 1; }
+  [ -z "$(ls -A "$dir")" ] || { echo "exit $status; left behind:"; ls -A "$dir"; return 1; }
+}
+check "SIGTERM while computing: non-zero exit, nothing left in the output directory" killed_run_leaves_nothing TERM
+check "SIGINT while computing: non-zero exit, nothing left in the output directory" killed_run_leaves_nothing INT
+
+refused_before_computing() {    # refused_before_computing OUTPUT: exit 2 within 1 s, message names OUTPUT's directory
+  local out=$1 t0 t1
+  t0=$(date +%s.%N)
+  run timeout 3 "$T" "${slow[@]}" -o "$out" "$work/slow.txt"
+  t1=$(date +%s.%N)
+  expect_rc 2 && has_message || return 1
+  grep -qF "${out%/*}" "$work/stderr" || { echo "message does not name $out:"; head -3 "$work/stderr"; return 1; }
+  elapsed_below "$t0" "$t1" 1 || { echo "took $(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }') s: computed first"; return 1; }
+}
+check "-o MISSING-DIR/out.tsv: exit 2 in under 1 s (before computing), message names the path" \
+  refused_before_computing "$work/missing-dir/out.tsv"
+output_path_before_input() {
+  run "$T" metrics -q -o "$work/missing-dir/out.tsv" "$work/bad.txt"
+  expect_rc 2 && has_message || return 1
+  grep -qF "$work/missing-dir" "$work/stderr" || { echo "message is not about the output path:"; head -3 "$work/stderr"; return 1; }
+  ! grep -qF bad.txt "$work/stderr" || { echo "message is about the input:"; head -3 "$work/stderr"; return 1; }
+}
+check "-o MISSING-DIR/out.tsv with a malformed input: the message is about the output path" output_path_before_input
+
+if [ "$(id -u)" = 0 ]; then
+  skip "-o into a read-only (555) directory: exit 2 before computing" root
+else
+  read_only_dir() {
+    mkdir "$work/ro"; chmod 555 "$work/ro"
+    refused_before_computing "$work/ro/out.tsv"; local s=$?
+    chmod 755 "$work/ro"
+    [ -z "$(ls -A "$work/ro")" ] || { echo "left behind:"; ls -A "$work/ro"; return 1; }
+    return $s
+  }
+  check "-o into a read-only (555) directory: exit 2 in under 1 s (before computing), message names it" read_only_dir
+fi
+
+o_is_input() {  # o_is_input SETUP OUTPUT: in $work/g, -o OUTPUT with input in.txt is refused, in.txt unchanged
+  rm -rf "$work/g"; mkdir -p "$work/g/sub"; cp "$work/h3.txt" "$work/g/in.txt"
+  (cd "$work/g" && eval "$1") || { echo "setup failed: $1"; return 1; }
+  run in_dir "$work/g" "$T" metrics -q --rates 1 -o "$2" in.txt
+  cmp -s "$work/h3.txt" "$work/g/in.txt" || { echo "the input was changed (exit $rc):"; head -2 "$work/g/in.txt"; return 1; }
+  expect_rc 2 && has_message
+}
+check "-o naming the input, same spelling: exit 2, input unchanged" o_is_input : in.txt
+check "-o naming the input as ./in.txt: exit 2, input unchanged" o_is_input : ./in.txt
+check "-o naming the input by its absolute path: exit 2, input unchanged" o_is_input : "$work/g/in.txt"
+check "-o naming the input as sub/../in.txt: exit 2, input unchanged" o_is_input : sub/../in.txt
+check "-o naming a hard link to the input: exit 2, input unchanged" o_is_input "ln in.txt hard.txt" hard.txt
+check "-o naming a symlink to the input: exit 2, input unchanged" o_is_input "ln -s in.txt sym.txt" sym.txt
+
+# ---------------------------------------------------------------- 4. silent merges and splits
+vessels_are() {     # vessels_are WANT FILE: metrics --rates 1 exits 0 with rows "vessel:n_data ..." = WANT
+  run "$T" metrics -q --rates 1 "$2"
+  expect_rc 0 || return 1
+  local got; got=$(awk -F'\t' 'NR > 1 { printf "%s%s:%s", sep, $2, $4; sep = " " }' "$work/stdout")
+  [ "$got" = "$1" ] || { echo "vessel:n_data '$got', expected '$1'"; return 1; }
+}
+csv_rows() {        # csv_rows GROUP [FIRST LAST]: points FIRST..LAST of pts8.txt as GROUP,x,y,z
+  awk -v g="$1" -v a="${2:-1}" -v b="${3:-8}" 'NF && ++n >= a && n <= b { print g "," $1 "," $2 "," $3 }' "$work/pts8.txt"
+}
+
+{ printf '\xef\xbb\xbf'; echo vessel,x,y,z; csv_rows a; csv_rows b; } >"$work/bom.csv"
+check "CSV with a UTF-8 BOM before the group column: vessels a and b of 8 points" vessels_are "a:8 b:8" "$work/bom.csv"
+
+long60a=$(printf 'v%.0s' {1..59})a long60b=$(printf 'v%.0s' {1..59})b
+long100a=$(printf 'w%.0s' {1..99})a long100b=$(printf 'w%.0s' {1..99})b
+{ echo vessel,x,y,z; csv_rows "$long60a"; csv_rows "$long60b"; } >"$work/long60.csv"
+{ echo vessel,x,y,z; csv_rows "$long100a"; csv_rows "$long100b"; } >"$work/long100.csv"
+check "CSV group values of 60 characters differing at the end: 2 vessels, full labels" \
+  vessels_are "$long60a:8 $long60b:8" "$work/long60.csv"
+check "CSV group values of 100 characters differing at the end: 2 vessels, full labels" \
+  vessels_are "$long100a:8 $long100b:8" "$work/long100.csv"
+
+{ echo vessel,x,y,z; csv_rows A 1 4; csv_rows B 1 4; csv_rows A 5 6; } >"$work/resume.csv"
+group_resumes() {
+  refused 2 "$T" metrics -q --rates 1 "$work/resume.csv" || return 1
+  grep -qF "$work/resume.csv:10:" "$work/stderr" || { echo "message does not name line 10:"; head -3 "$work/stderr"; return 1; }
+}
+check "CSV group A A A A B B B B A A: exit 2, message names line 10 where A resumes" group_resumes
+
+{ echo vessel,x,y,z; csv_rows a 1 4; echo; csv_rows a 5 8; } >"$work/group-blank.csv"
+{ echo vessel,x,y,z; csv_rows a 1 4; echo '# a comment'; csv_rows a 5 8; } >"$work/group-comment.csv"
+check "a blank line inside a CSV group does not split the vessel" vessels_are "a:8" "$work/group-blank.csv"
+check "a # comment line inside a CSV group does not split the vessel" vessels_are "a:8" "$work/group-comment.csv"
+
+{ sed -n 1,4p "$work/pts8.txt"; echo '# a comment'; sed -n 5,8p "$work/pts8.txt"; } >"$work/text-comment.txt"
+{ sed -n 1,4p "$work/pts8.txt"; echo; sed -n 5,8p "$work/pts8.txt"; } >"$work/text-blank.txt"
+check "a # comment line inside a plain-text vessel does not split it" vessels_are "1:8" "$work/text-comment.txt"
+check "a blank line in plain text still separates vessels" vessels_are "1:4 2:4" "$work/text-blank.txt"
+
+printf '0,5 0 0\n1,5 0,1 0\n2,5 0,4 0\n3,5 0,9 0\n4,5 1,6 0\n5,5 2,5 0\n' >"$work/decimal-comma.txt"
+decimal_comma() {
+  refused 2 "$T" metrics -q --rates 1 "$work/decimal-comma.txt" || return 1
+  grep -qF "$work/decimal-comma.txt:1:" "$work/stderr" || { echo "message does not name line 1:"; head -3 "$work/stderr"; return 1; }
+}
+check "plain text with decimal commas (0,5 0 0): exit 2, message names line 1" decimal_comma
+awk 'NF { print $1 ", " $2 ", " $3 }' "$work/pts8.txt" >"$work/comma-space.txt"
+check "plain text '1, 2, 3' (comma and space) is still read" vessels_are "1:8" "$work/comma-space.txt"
+
+two_x_columns() {   # two_x_columns NAME HEADER
+  { echo "$2"; awk 'NF { print $1 "," $1 * 1000 "," $2 "," $3 }' "$work/pts8.txt"; } >"$work/$1.csv"
+  refused 2 "$T" metrics -q --rates 1 "$work/$1.csv" || return 1
+  grep -qF "$work/$1.csv:1:" "$work/stderr" || { echo "message does not name line 1:"; head -3 "$work/stderr"; return 1; }
+}
+check "CSV header x_mm,x_um,y,z (two x columns): exit 2, message names line 1" two_x_columns x-mm-um x_mm,x_um,y,z
+check "CSV header x_mm,x_mm,y,z (x twice): exit 2, message names line 1" two_x_columns x-mm-mm x_mm,x_mm,y,z
+
+{ for i in $(seq 1 48); do printf 'c%d,' "$i"; done; printf 'x,y,z'; for i in $(seq 49 97); do printf ',c%d' "$i"; done; echo
+  awk 'NF { for (i = 1; i <= 48; i++) printf "%d,", i; printf "%s,%s,%s", $1, $2, $3
+            for (i = 49; i <= 97; i++) printf ",%d", i; print "" }' "$work/pts8.txt"; } >"$work/wide.csv"
+wide_csv() {
+  [ "$(head -1 "$work/wide.csv" | awk -F, '{ print NF }')" = 100 ] || { echo "fixture: header is not 100 columns"; return 1; }
+  vessels_are "1:8" "$work/wide.csv"
+}
+check "CSV with 100 columns (x, y, z in the middle): read, 8 points" wide_csv
+
+# ---------------------------------------------------------------- 5. resource limits
+segments_bound() {
+  refused 2 timeout 5 "$T" metrics -q --segments 5000 "$work/h45.txt" || return 1
+  grep -qw 1000 "$work/stderr" || { echo "message does not give the bound 1000:"; head -3 "$work/stderr"; return 1; }
+}
+check "--segments 5000: exit 2, message gives the bound 1000" segments_bound
+
+"$T" phantom --shape helix --points 1500 >"$work/p1500.txt"
+segments_in_little_memory() {
+  (ulimit -v 400000; exec timeout 120 "$T" metrics -q --jobs 1 --segments 1000 "$work/p1500.txt") \
+    >"$work/stdout" 2>"$work/stderr"; rc=$?
+  case $rc in
+    0) [ "$(wc -l <"$work/stdout")" = 5 ] || { echo "exit 0 but $(wc -l <"$work/stdout") lines, expected 5"; return 1; } ;;
+    1) has_message ;;
+    *) echo "exit $rc (timeout or signal), expected 0, or 1 with a message"; head -5 "$work/stderr"; return 1 ;;
+  esac
+}
+if grep -q __asan_init "$T" 2>/dev/null; then
+  skip "--segments 1000 on 1500 points under ulimit -v 400000: exit 0, or 1 with a message" "AddressSanitizer build"
+else
+  check "--segments 1000 on 1500 points under ulimit -v 400000: exit 0, or 1 with a message" segments_in_little_memory
+fi
+
+"$T" phantom --shape helix --count 20 --sigma 0.05 --seed 5 >"$work/h20.txt"
+many_threads() {
+  "$T" metrics -q --jobs 1 "$work/h20.txt" >"$work/h20-1.tsv" || { echo "--jobs 1 failed"; return 1; }
+  OMP_NUM_THREADS=100000 run timeout 60 "$T" metrics -q "$work/h20.txt"
+  expect_rc 0 && same_bytes "$work/h20-1.tsv" "$work/stdout"
+}
+check "OMP_NUM_THREADS=100000: exit 0, output identical to --jobs 1" many_threads
+
+# ---------------------------------------------------------------- 6. output hygiene
+mkdir "$work/n"
+cp "$work/h45.txt" "$work/n/a"$'\t'"b.txt"; cp "$work/h45.txt" "$work/n/a"$'\n'"b.txt"
+odd_names() {   # sets $work/stdout to metrics --rates 1 of the two odd names, run in $work/n
+  run in_dir "$work/n" "$T" metrics -q --rates 1 "a"$'\t'"b.txt" "a"$'\n'"b.txt"
+  expect_rc 0
+}
+fields_per_row() {
+  odd_names || return 1
+  [ "$(wc -l <"$work/stdout")" = 3 ] || { echo "$(wc -l <"$work/stdout") lines, expected a header and 2 rows:"; cat -A "$work/stdout" | cut -c1-60; return 1; }
+  awk -F'\t' 'NF != 29 { print "line " NR ": " NF " fields"; bad = 1 } END { exit bad }' "$work/stdout"
+}
+check "file names with TAB and newline: 3 lines, every one of 29 fields" fields_per_row
+file_column_escaped() {
+  odd_names || return 1
+  local got; got=$(awk -F'\t' 'NR > 1 { printf "%s%s", sep, $1; sep = " " }' "$work/stdout")
+  [ "$got" = 'a\tb.txt a\nb.txt' ] || { echo "file column '$got', expected 'a\\tb.txt a\\nb.txt'"; return 1; }
+}
+check "file names with TAB and newline: file column reads a\\tb.txt and a\\nb.txt" file_column_escaped
+
+{ echo vessel,x,y,z; csv_rows $'\x1b[31mred'; } >"$work/esc.csv"
+esc_label() {
+  run "$T" metrics -q --rates 1 "$work/esc.csv"
+  expect_rc 0 || return 1
+  ! grep -q $'\x1b' "$work/stdout" || { echo "a raw ESC byte in the output"; return 1; }
+  local got; got=$(awk -F'\t' 'NR == 2 { print $2 }' "$work/stdout")
+  [ "$got" = '\x1b[31mred' ] || { echo "label '$got', expected '\\x1b[31mred'"; return 1; }
+}
+check "CSV group value with an ESC byte: no ESC in the output, label reads \\x1b[31mred" esc_label
+
+esc_name=$work/bad$'\x1b'"[2J.txt"
+cp "$work/bad.txt" "$esc_name"
+esc_message() {
+  refused 2 "$T" metrics -q "$esc_name" || return 1
+  ! grep -q $'\x1b' "$work/stderr" || { echo "a raw ESC byte in the message:"; cat -A "$work/stderr" | head -3; return 1; }
+}
+check "malformed file named with an ESC byte: no raw ESC in the message" esc_message
+esc_message_names_file() {
+  refused 2 "$T" metrics -q "$esc_name" || return 1
+  grep -qF "$work/bad\\x1b[2J.txt:2:" "$work/stderr" || { echo "message does not read $work/bad\\x1b[2J.txt:2:"; cat -A "$work/stderr" | head -3; return 1; }
+}
+check "malformed file named with an ESC byte: message names it as bad\\x1b[2J.txt:2:" esc_message_names_file
+
+close_rates() {
+  run "$T" metrics -q --rates 1,1.000001 "$work/h45.txt"
+  expect_rc 0 || return 1
+  local got; got=$(awk -F'\t' 'NR > 1 { printf "%s%s", sep, $3; sep = " " }' "$work/stdout")
+  [ "$got" = "1 1.000001" ] || { echo "rate labels '$got', expected '1 1.000001'"; return 1; }
+}
+check "--rates 1,1.000001: two rows with rate labels 1 and 1.000001" close_rates
+check "--rates 1,1 (a rate twice): exit 2" refused 2 "$T" metrics -q --rates 1,1 "$work/h45.txt"
+
+printf '10 10 10\n11 10 10\n12 11 10\n13 13 11\n14 16 13\n' >"$work/voxels.dat"
+check "--voxel 1x1x1junk: exit 2" refused 2 "$T" metrics -q --voxel 1x1x1junk "$work/voxels.dat"
+check "--voxel 1x1: exit 2" refused 2 "$T" metrics -q --voxel 1x1 "$work/voxels.dat"
+
+echo "reliability: $passed passed, $failed failed"
+exit 0
