@@ -350,6 +350,27 @@ else
   check "--segments 1000 on 1500 points under ulimit -v 400000: exit 0, or 1 with a message" segments_in_little_memory
 fi
 
+# Memory running out part-way: every limit gives either the whole table or nothing and a message.
+no_partial_table() {
+  local v rc hit=0
+  for v in 20000 30000 40000 60000; do
+    (ulimit -v $v; exec timeout 120 "$T" metrics -q --jobs 1 --segments 1000 "$work/p1500.txt") \
+      >"$work/stdout" 2>"$work/stderr"; rc=$?
+    case $rc in
+      0) [ "$(wc -l <"$work/stdout")" = 5 ] || { echo "limit $v KB: exit 0 with a partial table"; return 1; } ;;
+      1) [ ! -s "$work/stdout" ] || { echo "limit $v KB: exit 1 after writing rows"; return 1; }
+         grep -q 'out of memory' "$work/stderr" || { echo "limit $v KB: no message"; return 1; }; hit=1 ;;
+      *) echo "limit $v KB: exit $rc"; head -3 "$work/stderr"; return 1 ;;
+    esac
+  done
+  [ $hit = 1 ] || echo "(no limit ran out of memory on this machine)"
+}
+if grep -q __asan_init "$T" 2>/dev/null; then
+  skip "memory running out: the whole table, or nothing and a message" "AddressSanitizer build"
+else
+  check "memory running out: the whole table, or nothing and a message" no_partial_table
+fi
+
 "$T" phantom --shape helix --count 20 --sigma 0.05 --seed 5 >"$work/h20.txt"
 many_threads() {
   "$T" metrics -q --jobs 1 "$work/h20.txt" >"$work/h20-1.tsv" || { echo "--jobs 1 failed"; return 1; }
