@@ -317,7 +317,7 @@ BENCH_FILES = $(wildcard $(DATA_DIR)/brava-3darteryvis/allscans/*/*.swc)
 .PHONY: bench bench-1 bench-2
 bench: bench-1 bench-2
 	@cmp build/bench-1.tsv build/bench-2.tsv && echo "bench: output identical for 1 and 2 threads"
-bench-%: bin/tortuosity
+bench-1 bench-2: bench-%: bin/tortuosity
 	@start=$$(date +%s.%N); \
 	./bin/tortuosity metrics -q --jobs $* --rates $(RATE_LIST) $(BENCH_FILES) >build/bench-$*.tsv; \
 	end=$$(date +%s.%N); \
