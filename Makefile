@@ -278,10 +278,10 @@ build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(FUZZ_T
 	  -DFUZZ_FORMAT=FORMAT_$(shell echo $* | tr a-z A-Z) -Ibuild/src -o $@ $< $(LIB_SOURCES) $(LDLIBS)
 
 # Seeds: the first 8000 bytes of up to twelve real files of the format (text: generated phantoms).
-SEED_FILES_swc      = $(wordlist 1,12,$(wildcard $(DATA_DIR)/brava-*/*.swc $(DATA_DIR)/brava-*/*/*.swc \
-                                                 $(DATA_DIR)/brava-*/*/*/*.swc))
-SEED_FILES_csv      = $(wordlist 1,12,$(wildcard $(DATA_DIR)/*/*.csv))
-SEED_FILES_angicart = $(wordlist 1,12,$(wildcard $(DATA_DIR)/*/*.dat))
+# Shell globs, so that names with spaces stay whole.
+SEED_GLOBS_swc      := brava-*/*.swc brava-*/*/*.swc brava-*/*/*/*.swc
+SEED_GLOBS_csv      := */*.csv
+SEED_GLOBS_angicart := */*.dat
 build/fuzz/corpus-text/.seeded: bin/tortuosity
 	@mkdir -p $(@D)
 	./bin/tortuosity phantom --shape salkowski --sigma 0.01 -o $(@D)/salkowski.txt
@@ -289,7 +289,8 @@ build/fuzz/corpus-text/.seeded: bin/tortuosity
 	@touch $@
 build/fuzz/corpus-%/.seeded: data/manifest.tsv
 	@mkdir -p $(@D)
-	@n=0; for f in $(SEED_FILES_$*); do head -c 8000 "$$f" >$(@D)/seed-$$n; n=$$((n + 1)); done; touch $@
+	@shopt -s nullglob; files=($(addprefix '$(DATA_DIR)'/,$(SEED_GLOBS_$*))); n=0; \
+	for f in "$${files[@]:0:12}"; do head -c 8000 "$$f" >$(@D)/seed-$$n; n=$$((n + 1)); done; touch $@
 
 # One run per reader; a crash stops with the input saved in build/fuzz/.
 build/fuzz/%.log: build/fuzz/fuzz-% build/fuzz/corpus-%/.seeded
