@@ -435,5 +435,98 @@ printf '10 10 10\n11 10 10\n12 11 10\n13 13 11\n14 16 13\n' >"$work/voxels.dat"
 check "--voxel 1x1x1junk: exit 2" refused 2 "$T" metrics -q --voxel 1x1x1junk "$work/voxels.dat"
 check "--voxel 1x1: exit 2" refused 2 "$T" metrics -q --voxel 1x1 "$work/voxels.dat"
 
+# ---------------------------------------------------------------- 7. a second adversarial pass
+{ echo 'x,y,z,vessel'; csv_rows 'v#1' 1 4 | awk -F, '{ print $2 "," $3 "," $4 "," $1 }'
+  csv_rows 'v#2' 5 8 | awk -F, '{ print $2 "," $3 "," $4 "," $1 }'; } >"$work/hash.csv"
+check "a # inside a CSV value is part of the value: vessels v#1 and v#2" vessels_are "v#1:4 v#2:4" "$work/hash.csv"
+{ echo '"vessel",x,y,z'; csv_rows a 1 4; csv_rows b 5 8; } >"$work/quoted.csv"
+check "a quoted header name (\"vessel\") is read: vessels a and b" vessels_are "a:4 b:4" "$work/quoted.csv"
+awk 'NF { gsub(/ /, " , "); print }' "$work/pts8.txt" >"$work/spaced-commas.txt"
+check "plain text '1 , 2 , 3' (spaces around commas) is read" vessels_are "1:8" "$work/spaced-commas.txt"
+
+"$T" phantom --shape helix --count 60 --points 300 >"$work/medium.txt"
+hup_ignored() {     # started with HUP ignored (nohup): a HUP does not stop the run
+  mkdir -p "$work/hup"
+  ( trap '' HUP; exec "$T" metrics -q --jobs 1 --rates 1000 -o "$work/hup/out.tsv" "$work/medium.txt" ) &
+  local pid=$!
+  sleep 0.3; kill -HUP "$pid" 2>/dev/null
+  reap "$pid" 120; local status=$?
+  [ "$status" = 0 ] || { echo "exit $status after HUP"; return 1; }
+  [ "$(wc -l <"$work/hup/out.tsv")" = 61 ] || { echo "out.tsv incomplete"; return 1; }
+}
+check "a run started under nohup (HUP ignored) survives a HUP and writes its result" hup_ignored
+
+to_stdout_link() {
+  "$T" metrics -q --rates 1 -o /dev/stdout "$work/h3.txt" | cat >"$work/piped.tsv" || return 1
+  same_bytes "$work/h3.tsv" "$work/piped.tsv" || return 1
+  printf 'precious\n' >"$work/log"
+  { "$T" metrics -q --rates 1 -o /dev/stdout "$work/h3.txt"; } >>"$work/log" || return 1
+  [ "$(head -1 "$work/log")" = precious ] || { echo "the file behind >> was replaced"; return 1; }
+  [ "$(wc -l <"$work/log")" = 5 ] || { echo "log has $(wc -l <"$work/log") lines, expected 5"; return 1; }
+}
+check "-o /dev/stdout into a pipe, and appended with >>: written through, nothing replaced" to_stdout_link
+
+symlink_loop() {
+  mkdir -p "$work/loop" && ln -sfn B "$work/loop/A" && ln -sfn A "$work/loop/B"
+  refused 2 "$T" metrics -q --rates 1 -o "$work/loop/A" "$work/h3.txt" || return 1
+  [ -L "$work/loop/A" ] && [ -L "$work/loop/B" ] || { echo "a link of the loop was replaced"; return 1; }
+}
+check "-o a symlink loop: exit 2, the links untouched" symlink_loop
+
+"$T" phantom --shape helix --count 200 >"$work/h200.txt"
+file_size_limit() {
+  mkdir -p "$work/fs"
+  (ulimit -f 1; exec "$T" metrics -q --rates 1,2 -o "$work/fs/out.tsv" "$work/h200.txt") 2>"$work/stderr"
+  local status=$?
+  [ "$status" = 1 ] || { echo "exit $status, expected 1"; return 1; }
+  has_message || return 1
+  [ -z "$(ls -A "$work/fs")" ] || { echo "left in the directory: $(ls -A "$work/fs")"; return 1; }
+}
+check "ulimit -f 1: exit 1 with a message, no file left" file_size_limit
+
+stderr_closed() {
+  awk '{ print } NR == 5 { print }' "$work/h3.txt" >"$work/rep.txt"
+  "$T" metrics --rates 1 -o "$work/closed.tsv" "$work/rep.txt" 2>&- || return 1
+  [ "$(head -c 4 "$work/closed.tsv")" = file ] || { echo "the result starts with: $(head -1 "$work/closed.tsv")"; return 1; }
+}
+check "standard error closed: messages do not land in the result" stderr_closed
+
+empty_name_first() {
+  local t0 t1; t0=$(date +%s.%N)
+  refused 2 "$T" "${slow[@]}" -o '' "$work/slow.txt" || return 1
+  t1=$(date +%s.%N); elapsed_below "$t0" "$t1" 1 || { echo "took more than 1 s: computed first"; return 1; }
+}
+check "-o '' (empty name): exit 2 before computing" empty_name_first
+too_long_first() {
+  local t0 t1; t0=$(date +%s.%N)
+  refused 2 "$T" "${slow[@]}" -o "$work/$(printf 'n%.0s' $(seq 256))" "$work/slow.txt" || return 1
+  t1=$(date +%s.%N); elapsed_below "$t0" "$t1" 1 || { echo "took more than 1 s: computed first"; return 1; }
+}
+check "-o with a 256-byte name: exit 2 before computing" too_long_first
+
+esc_in_option() {
+  run "$T" metrics --trim $'\e[2J' "$work/h3.txt"
+  expect_rc 2 || return 1
+  ! grep -q $'\e' "$work/stderr" || { echo "raw ESC in the message"; return 1; }
+}
+check "an option value with ESC: exit 2, the message escapes it" esc_in_option
+esc_in_unknown() {
+  run "$T" metrics $'--\e[2J' "$work/h3.txt"
+  expect_rc 2 || return 1
+  ! grep -q $'\e' "$work/stderr" || { echo "raw ESC in the message"; return 1; }
+}
+check "an unknown option with ESC: exit 2, the message escapes it" esc_in_unknown
+check "--voxel 1x1x0x1 (hexadecimal): exit 2" refused 2 "$T" metrics -q --voxel 1x1x0x1 "$work/voxels.dat"
+check "--voxel 0x2x3x4 (hexadecimal): exit 2" refused 2 "$T" metrics -q --voxel 0x2x3x4 "$work/voxels.dat"
+check "--rates 1,,2 (an empty rate): exit 2" refused 2 "$T" metrics -q --rates 1,,2 "$work/h3.txt"
+check "--rate ' 10' (leading space): exit 2" refused 2 "$T" profile -q --rate ' 10' "$work/h3.txt"
+
+stdin_is_output() {
+  mkdir -p "$work/si" && cp "$work/h3.txt" "$work/si/in.txt" && cp "$work/h3.txt" "$work/si/copy.txt"
+  refused 2 "$T" metrics -q --rates 1 -o "$work/si/in.txt" - <"$work/si/in.txt" || return 1
+  cmp -s "$work/si/in.txt" "$work/si/copy.txt" || { echo "the input was changed"; return 1; }
+}
+check "- as input with -o naming the file on standard input: exit 2, input unchanged" stdin_is_output
+
 echo "reliability: $passed passed, $failed failed"
 exit 0
