@@ -37,7 +37,7 @@ FUZZ_TOOLS   := build/.tools-fuzz
 .PHONY: all
 all: bin/tortuosity
 
-MODULES := vessel readers pspline stencil metrics frenet phantom pipeline
+MODULES := phantom pipeline pspline stencil metrics frenet vessel readers   # in the order of paper.nw
 HEADERS := $(addprefix build/src/,geom.h $(addsuffix .h,$(MODULES)))
 LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES)))
 C_ROOTS := $(addprefix src/,geom.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES)) \
