@@ -32,6 +32,7 @@ LDLIBS  := -lgsl -lgslcblas -lm
 BUILD_TOOLS  := build/.tools-build
 REPORT_TOOLS := build/.tools-report
 FUZZ_TOOLS   := build/.tools-fuzz
+PARALLEL_TOOLS := build/.tools-parallel
 
 # ---------------------------------------------------------------- the program
 .PHONY: all
@@ -43,7 +44,7 @@ LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES)))
 C_ROOTS := $(addprefix src/,geom.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES)) \
              tortuosity.c unit-tests.c fuzz-readers.c)
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
-           scripts/profile.gp scripts/interfaces.awk
+           scripts/profile.gp scripts/interfaces.awk scripts/slurm-shards.sh
 ROOTS   := $(C_ROOTS) $(SCRIPTS)
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
@@ -229,7 +230,7 @@ paper: $(REPORT_INPUTS) | $(REPORT_TOOLS)
 # Each suite ends with "[name: ]N passed, N failed"; the totals decide.
 COUNT_LINE := /^([a-z0-9-]+: )?[0-9]+ passed, [0-9]+ failed$$/
 .PHONY: check
-check: build/unit-tests bin/tortuosity
+check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh
 	@echo "== unit tests (paper.nw)"
 	@./build/unit-tests | tee build/unit-tests.log
 	@echo "== end-to-end checks (tests/)"
@@ -306,6 +307,26 @@ fuzz:
 	@rm -f $(foreach f,$(FUZZ_FORMATS),build/fuzz/$(f).log)
 	@$(MAKE) --no-print-directory $(foreach f,$(FUZZ_FORMATS),build/fuzz/$(f).log)
 
+# ---------------------------------------------------------------- sharded runs
+# One metrics run split into SHARDS parts by --shard, run by GNU parallel on JOBS local slots
+# (or on the hosts of SSHLOGIN, which must see this directory at the same path), then joined
+# with the header once; the joined file has the bytes of a single run. For a Slurm cluster,
+# build/scripts/slurm-shards.sh does the same with a job array.
+#   make sharded FILES='a.swc b.swc' [SHARDS=4] [JOBS=2] [SSHLOGIN=host1,host2] [SHARD_OPTIONS='-q']
+SHARDS        ?= 4
+JOBS          ?= 2
+SHARD_DIR     ?= build/sharded
+SHARD_OPTIONS ?= -q
+.PHONY: sharded
+sharded: bin/tortuosity | $(PARALLEL_TOOLS)
+	@test -n '$(FILES)' || { echo "give the input files: make sharded FILES='...'" >&2; exit 2; }
+	@rm -rf '$(SHARD_DIR)' && mkdir -p '$(SHARD_DIR)'
+	parallel --halt now,fail=1 --jobs $(JOBS) $(if $(SSHLOGIN),--sshlogin $(SSHLOGIN) --workdir $(CURDIR)) \
+	  $(CURDIR)/bin/tortuosity metrics $(SHARD_OPTIONS) --shard {}/$(SHARDS) -o '$(SHARD_DIR)'/shard-{}.tsv \
+	  $(FILES) ::: $$(seq $(SHARDS))
+	awk 'FNR > 1 || NR == 1' '$(SHARD_DIR)'/shard-{1..$(SHARDS)}.tsv >'$(SHARD_DIR)'/all.tsv
+	@echo "sharded: $(SHARD_DIR)/all.tsv"
+
 # ---------------------------------------------------------------- lint, benchmark, clean
 .PHONY: lint
 lint: | $(BUILD_TOOLS)
@@ -362,6 +383,10 @@ $(BUILD_TOOLS):
 
 $(REPORT_TOOLS): | $(BUILD_TOOLS)
 	@$(call ensure_packages,$(REPORT_PACKAGES),gnuplot Rscript pdflatex noweave,$(TEXMF)/booktabs/booktabs.sty)
+	@touch $@
+
+$(PARALLEL_TOOLS): | $(BUILD_TOOLS)
+	@$(call ensure_packages,parallel,parallel,)
 	@touch $@
 
 $(FUZZ_TOOLS): | $(BUILD_TOOLS)

@@ -114,6 +114,55 @@ profile_ends_defined() {   # every sample has a speed; tau, N, B are empty exact
 }
 check "profile: derivatives at every sample, undefined values empty" profile_ends_defined
 
+# ---------------------------------------------------------------- sharded runs
+"$T" phantom --shape helix --count 30 --sigma 0.05 --seed 7 >"$work/shard-a.txt"
+"$T" phantom --shape salkowski --count 6 --points 150 --sigma 0.01 --seed 8 >"$work/shard-b.txt"
+shard_files=("$work/shard-a.txt" "$work/shard-b.txt")
+"$T" metrics -q "${shard_files[@]}" >"$work/unsharded.tsv"
+shards_join_to_whole() {   # shards_join_to_whole N: N shards, joined with the header once
+  local k parts=()
+  for k in $(seq "$1"); do
+    "$T" metrics -q --shard "$k/$1" -o "$work/shard-$k-of-$1.tsv" "${shard_files[@]}" || return 1
+    parts+=("$work/shard-$k-of-$1.tsv")
+  done
+  awk 'FNR > 1 || NR == 1' "${parts[@]}" | cmp - "$work/unsharded.tsv"
+}
+check "--shard: shards 1..4 joined are the unsharded output, byte for byte" shards_join_to_whole 4
+check "--shard: shards 1..7 joined (more shards than helices per file) likewise" shards_join_to_whole 7
+sufficient_shards() {
+  "$T" phantom --shape helix --count 12 --seed 9 --sigma 0.02 | awk 'NF { print $0, 0.3; next } { print }' \
+    >"$work/radii12.txt"
+  "$T" sufficient -q "$work/radii12.txt" >"$work/suff-all.tsv" || return 1
+  local k; for k in 1 2 3; do "$T" sufficient -q --shard $k/3 "$work/radii12.txt" >"$work/suff-$k.tsv" || return 1; done
+  awk 'FNR > 1 || NR == 1' "$work"/suff-{1,2,3}.tsv | cmp - "$work/suff-all.tsv"
+}
+check "sufficient --shard: shards 1..3 joined are the unsharded output" sufficient_shards
+for bad in 0/4 5/4 1/0 x 1/ 2/3x; do
+  check "--shard $bad: exit 2" exit_status_and_one_line 2 "$T" metrics -q --shard "$bad" "$work/shard-a.txt"
+done
+check "--shard with standard input: exit 2 (the input is read twice)" \
+  bash -c "'$T' metrics -q --shard 1/2 - <'$work/shard-a.txt' >/dev/null 2>&1; [ \$? = 2 ]"
+slurm=${REPO:-.}/build/scripts/slurm-shards.sh
+if [ -f "$slurm" ]; then
+  slurm_array_joins_to_whole() {
+    local k
+    for k in 1 2 3 4; do
+      SLURM_ARRAY_TASK_ID=$k SLURM_ARRAY_TASK_COUNT=4 SLURM_CPUS_PER_TASK=1 TORTUOSITY=$T \
+        bash "$slurm" run "$work/slurm" -q -- "${shard_files[@]}" || return 1
+    done
+    bash "$slurm" join "$work/slurm" 4 | cmp - "$work/unsharded.tsv"
+  }
+  check "Slurm script (array tasks 1..4 run here, then joined) gives the unsharded output" slurm_array_joins_to_whole
+fi
+if [ -n "${REPO:-}" ] && { command -v parallel >/dev/null || [ "$(id -u)" = 0 ]; }; then
+  make_sharded_with_parallel() {
+    make -s -C "$REPO" sharded FILES="${shard_files[*]}" SHARDS=4 JOBS=2 SHARD_DIR="$work/sharded" \
+      >"$work/make-sharded.log" 2>&1 || { tail -5 "$work/make-sharded.log"; return 1; }
+    cmp "$work/sharded/all.tsv" "$work/unsharded.tsv"
+  }
+  check "make sharded (GNU parallel, 2 jobs, 4 shards) gives the unsharded output" make_sharded_with_parallel
+fi
+
 # ---------------------------------------------------------------- real data (where present)
 if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ]; then
   brava=("$DATA_DIR"/brava-3darteryvis/allscans/*/*.swc)
