@@ -5,15 +5,7 @@
 set -u -o pipefail
 T=${1:?usage: end-to-end.sh path/to/tortuosity}
 DATA_DIR=${DATA_DIR:-../shared/data}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0 failed=0
-
-check() {   # check NAME COMMAND...: passes when the command succeeds
-  local name=$1; shift
-  if "$@" >"$work/out" 2>&1; then passed=$((passed + 1)); echo "ok   $name"
-  else failed=$((failed + 1)); echo "FAIL $name"; sed 's/^/     /' "$work/out" | head -20; fi
-}
+. "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 column() {  # column NAME FILE: prints that column of a TSV (header row dropped)
   awk -F'\t' -v name="$1" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == name) c = i; next } { print $c }' "$2"

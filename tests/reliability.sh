@@ -7,15 +7,7 @@
 set -u -o pipefail
 T=${1:?usage: reliability.sh path/to/tortuosity}
 case $T in /*) ;; */*) T=$PWD/$T ;; esac   # absolute: some checks run in subdirectories
-work=$(mktemp -d)
-trap 'chmod -R u+rwx "$work" 2>/dev/null; rm -rf "$work"' EXIT
-passed=0 failed=0
-
-check() {   # check NAME COMMAND...: passes when the command succeeds
-  local name=$1; shift
-  if "$@" >"$work/out" 2>&1; then passed=$((passed + 1)); echo "ok   $name"
-  else failed=$((failed + 1)); echo "FAIL $name"; sed 's/^/     /' "$work/out" | head -20; fi
-}
+. "$(dirname "${BASH_SOURCE[0]}")/harness.sh"
 
 skip() {    # skip NAME REASON: an ok line for a check that cannot run here
   passed=$((passed + 1)); echo "ok   $1 (skipped: $2)"
