@@ -38,7 +38,7 @@ PARALLEL_TOOLS := build/.tools-parallel
 .PHONY: all
 all: bin/tortuosity
 
-MODULES := phantom pipeline pspline stencil metrics frenet vessel readers   # in the order of paper.nw
+MODULES := phantom pipeline pspline stencil metrics frenet study vessel readers   # in the order of paper.nw
 HEADERS := $(addprefix build/src/,geom.h $(addsuffix .h,$(MODULES)))
 LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES)))
 C_ROOTS := $(addprefix src/,geom.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES)) \
@@ -116,27 +116,39 @@ $(SUFFICIENT): build/results/sufficient/%.tsv: data/manifest.tsv bin/tortuosity
 	@$(call dataset_files,$(*F)); echo "sufficient rate: $(*F) ($(*D))"; \
 	./bin/tortuosity sufficient -q --integrator $(*D) -o $@ "$${files[@]}"
 
-# Phantoms: SHAPE/clean.txt (noise-free) and SHAPE/noisy.txt (100 with sigma = 0.01 mm, seed 1),
-# each measured with each integrator (SHAPE/NOISE-INTEGRATOR.tsv), then gathered in one table.
-PHANTOM_RUNS := $(foreach s,$(SHAPES),$(foreach n,$(NOISES),$(foreach i,$(INTEGRATORS),\
-                  build/results/phantoms/$(s)/$(n)-$(i).tsv)))
-PHANTOM_INPUTS := $(foreach s,$(SHAPES),$(foreach n,$(NOISES),build/results/phantoms/$(s)/$(n).txt))
-.SECONDARY: $(PHANTOM_INPUTS)
-PHANTOM_NOISE_clean :=
-PHANTOM_NOISE_noisy := --sigma 0.01 --count 100 --seed 1
-build/results/phantoms/%.txt: bin/tortuosity
+# The phantom study (report, "The phantom study"): each shape at the paper's three noise
+# parameters, read as a standard deviation and as a variance, at the two densities the paper
+# states, STUDY_COUNT realisations each, plus one noise-free phantom per shape and density:
+# build/results/study/FIT/SHAPE/DENSITY/{clean,READING-SIGMA}.tsv, FIT = package or paper.
+SIGMAS       := 0.0005 0.001 0.1
+READINGS     := sd variance
+DENSITIES    := supplement caption
+STUDY_COUNT  := 1000
+PAPER_SIGMAS := circle:0.0005 helix:0.1 salkowski:0.001   # the one sigma the paper gives each shape
+# The paper's stated fit: quintic (C4), no more than 20 basis functions (15 segments); its
+# penalty order is not stated, Eilers and Marx's usual second order is taken.
+FIT_package :=
+FIT_paper   := --degree 5 --penalty-order 2 --segments 15
+study_cells = $(foreach s,$(SHAPES),$(foreach d,$(DENSITIES),build/results/study/$(1)/$(s)/$(d)/clean.tsv \
+                $(foreach r,$(READINGS),$(foreach g,$(2),build/results/study/$(1)/$(s)/$(d)/$(r)-$(g).tsv))))
+STUDY_PACKAGE := $(call study_cells,package,$(SIGMAS))
+paper_cells = $(foreach d,$(DENSITIES),build/results/study/paper/$(1)/$(d)/clean.tsv \
+                $(foreach r,$(READINGS),build/results/study/paper/$(1)/$(d)/$(r)-$(2).tsv))
+STUDY_PAPER   := $(foreach p,$(PAPER_SIGMAS),$(call paper_cells,$(word 1,$(subst :, ,$(p))),$(word 2,$(subst :, ,$(p)))))
+# The stem is FIT/SHAPE/DENSITY/CELL; CELL is clean or READING-SIGMA.
+study_word = $(word $(1),$(subst /, ,$*))
+study_noise = $(if $(filter clean,$(call study_word,4)),,--reading $(firstword $(subst -, ,$(call study_word,4))) \
+                --sigma $(lastword $(subst -, ,$(call study_word,4))) --count $(STUDY_COUNT))
+build/results/study/%.tsv: bin/tortuosity
 	@mkdir -p $(@D)
-	./bin/tortuosity phantom --shape $(*D) $(PHANTOM_NOISE_$(*F)) -o $@
-# The stem is SHAPE/NOISE-INTEGRATOR; the metrics name the input file as NOISE.txt.
-phantom_noise = $(firstword $(subst -, ,$(*F)))
-build/results/phantoms/%.tsv: bin/tortuosity build/results/phantoms/$$(*D)/$$(firstword $$(subst -, ,$$(*F))).txt
-	cd $(@D) && $(CURDIR)/bin/tortuosity metrics -q --rates $(RATE_LIST) \
-	  --integrator $(patsubst $(phantom_noise)-%,%,$(*F)) -o $(CURDIR)/$@ $(phantom_noise).txt
-build/results/phantoms.tsv: $(PHANTOM_RUNS)
-	awk -F'\t' 'NR == 1 { print "shape\tnoise\tintegrator\t" $$0 } FNR > 1 { \
-	  n = split(FILENAME, part, "/"); shape = part[n - 1]; sub(/\.tsv$$/, "", part[n]); \
-	  i = index(part[n], "-"); print shape "\t" substr(part[n], 1, i - 1) "\t" substr(part[n], i + 1) "\t" $$0 }' \
-	  $^ >$@.tmp && mv $@.tmp $@
+	./bin/tortuosity phantom-study --shape $(call study_word,2) --density $(call study_word,3) \
+	  $(study_noise) --rates $(RATE_LIST) $(FIT_$(call study_word,1)) -o $@
+# One table per fit, header once, cells in the order of the grid (committed).
+results/phantom-summary.tsv: $(STUDY_PACKAGE)
+results/phantom-summary-paper-fit.tsv: $(STUDY_PAPER)
+results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv:
+	@mkdir -p results
+	awk 'NR == 1 || FNR > 1' $^ >$@.tmp && mv $@.tmp $@
 
 # The analytic trimmed totals of each shape: build/results/truth/SHAPE.tsv.
 build/results/truth/%.tsv: bin/tortuosity
@@ -159,17 +171,19 @@ build/results/profile-%.tsv: bin/tortuosity
 # Small summaries, committed. R writes into a scratch folder; the files are moved into place.
 RESULT_TABLES := results/phantom-table.tex results/recon-table.tex results/soa-acct-table.tex \
                  results/correlation.tex results/sufficient-table.tex results/numbers.tex
-RESULT_TSVS   := results/phantom-salkowski.tsv results/recon-error.tsv results/percent-shift.tsv \
+RESULT_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
+                 results/phantom-sensitivity.tsv results/phantom-reading.tsv results/recon-error.tsv results/percent-shift.tsv \
                  results/soa-acct.tsv results/correlation.tsv results/sufficient.tsv
 SOA_POINTS    := build/results/soa-acct-points.tsv
 SUMMARY_TMP   := build/results/summary.tmp
 
 $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) $(SUFFICIENT) \
-    build/results/phantoms.tsv build/results/phantom-truth.tsv | $(REPORT_TOOLS)
+    results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv build/results/phantom-truth.tsv | $(REPORT_TOOLS)
 	@rm -rf $(SUMMARY_TMP) && mkdir -p $(SUMMARY_TMP) results
 	Rscript --vanilla build/scripts/analysis.R in=build/results out=$(SUMMARY_TMP) points=$(SOA_POINTS).tmp \
 	  rates='$(RATES)' variants='$(VARIANTS)' integrators='$(INTEGRATORS)' shapes='$(SHAPES)' \
-	  radii='$(RADII_DATASETS)' shift_metrics='$(SHIFT_METRICS)'
+	  radii='$(RADII_DATASETS)' shift_metrics='$(SHIFT_METRICS)' densities='$(DENSITIES)' \
+	  readings='$(READINGS)' paper_sigmas='$(PAPER_SIGMAS)'
 	@mv $(SOA_POINTS).tmp $(SOA_POINTS)
 	@mv $(addprefix $(SUMMARY_TMP)/,$(notdir $(RESULT_TABLES) $(RESULT_TSVS))) results/
 
