@@ -29,7 +29,7 @@ fi
 
 # ---------------------------------------------------------------- command line
 check "tortuosity --help exits 0" "$T" --help
-for cmd in metrics profile sufficient phantom; do
+for cmd in metrics profile sufficient phantom phantom-study; do
   check "$cmd --help exits 0" "$T" "$cmd" --help
 done
 metrics_help_lists_options() {
@@ -85,6 +85,25 @@ check "1 and 2 threads give identical output (-o file)" cmp "$work/h1.tsv" "$wor
 check "-o leaves no temporary file" bash -c "! ls '$work' | grep -q '\\.tmp\\.'"
 check "same seed gives the same phantoms" bash -c "'$T' phantom --count 3 --sigma 0.1 --seed 9 | cmp - <('$T' phantom --count 3 --sigma 0.1 --seed 9)"
 check "profile has samples and reconstruction" bash -c "'$T' profile --rate 10 '$work/salk.txt' | awk -F'\t' 'NR>1 && \$18==1 {n++} END {exit !(n > 300)}'"
+
+# Densities: 2 points per mm of a 44.72 mm helix is round(89.44) + 1 = 90 samples, 89 steps of 0.5025 mm.
+per_mm_density() {
+  "$T" phantom --shape helix | "$T" metrics -q --rates 2/mm,1 - >"$work/per-mm.tsv" || return 1
+  awk -F'\t' 'NR == 2 && $3 == "2/mm" && $5 == 90 && $4 == 46 {ok++} NR == 3 && $3 == "1" && $5 == 46 {ok++}
+               END {exit ok != 2}' "$work/per-mm.tsv" || { cat "$work/per-mm.tsv"; return 1; }
+}
+check "metrics --rates 2/mm samples a helix at 2 points per mm of fitted length" per_mm_density
+check "phantom --density caption: 19 Salkowski points" bash -c "'$T' phantom --shape salkowski --density caption | wc -l | grep -qx 19"
+check "phantom --density 16 and --points together: exit 2" bash -c "'$T' phantom --density 16 --points 9; [ \$? -eq 2 ]"
+check "phantom-study --reading cm: exit 2 with a message" bash -c \
+  "'$T' phantom-study --reading cm 2>&1 | grep -q \"reading takes sd or variance\"; [ \${PIPESTATUS[0]} -eq 2 ]"
+study_threads() {   # the summary of a cell does not depend on the number of threads
+  "$T" phantom-study --shape salkowski --sigma 0.01 --count 60 --jobs 1 -o "$work/study-1.tsv" || return 1
+  "$T" phantom-study --shape salkowski --sigma 0.01 --count 60 --jobs 3 -o "$work/study-3.tsv" || return 1
+  cmp "$work/study-1.tsv" "$work/study-3.tsv" || return 1
+  awk -F'\t' 'NR > 1 && $6 != 60 {bad++} END {exit bad > 0 || NR != 46}' "$work/study-1.tsv"
+}
+check "phantom-study: 60 realisations in every row, the same with 1 and 3 threads" study_threads
 
 "$T" phantom --shape helix --points 1000000 >"$work/long.txt"
 check "a vessel of 10^6 points is measured (raw and 1X) with exact ACCT" bash -c \
