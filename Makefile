@@ -44,7 +44,7 @@ LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES)))
 C_ROOTS := $(addprefix src/,geom.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES)) \
              tortuosity.c unit-tests.c fuzz-readers.c)
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
-           scripts/profile.gp scripts/interfaces.awk scripts/slurm-shards.sh
+           scripts/profile.gp scripts/territories.gp scripts/interfaces.awk scripts/slurm-shards.sh
 ROOTS   := $(C_ROOTS) $(SCRIPTS)
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
@@ -116,6 +116,17 @@ $(SUFFICIENT): build/results/sufficient/%.tsv: data/manifest.tsv bin/tortuosity
 	@$(call dataset_files,$(*F)); echo "sufficient rate: $(*F) ($(*D))"; \
 	./bin/tortuosity sufficient -q --integrator $(*D) -o $@ "$${files[@]}"
 
+# The paper's own densities for its data, in points per mm (Bullitt's 2, O'Flynn's 5,
+# Vorobtsova's 10), applied to the datasets that stand in for them: build/results/density/DATASET.tsv.
+PAPER_DENSITIES := brava-3darteryvis:2 aorta-ct:5 coronary-ct:10
+DENSITY_RUNS    := $(foreach p,$(PAPER_DENSITIES),build/results/density/$(firstword $(subst :, ,$(p))).tsv)
+density_of       = $(lastword $(subst :, ,$(filter $(1):%,$(PAPER_DENSITIES))))
+
+$(DENSITY_RUNS): build/results/density/%.tsv: data/manifest.tsv bin/tortuosity
+	@mkdir -p $(@D)
+	@$(call dataset_files,$*); echo "measure $* at $(call density_of,$*) points/mm"; \
+	./bin/tortuosity metrics -q --rates $(call density_of,$*)/mm -o $@ "$${files[@]}"
+
 # The phantom study (report, "The phantom study"): each shape at the paper's three noise
 # parameters, read as a standard deviation and as a variance, at the two densities the paper
 # states, STUDY_COUNT realisations each, plus one noise-free phantom per shape and density:
@@ -170,20 +181,21 @@ build/results/profile-%.tsv: bin/tortuosity
 # ---------------------------------------------------------------- results -> tables
 # Small summaries, committed. R writes into a scratch folder; the files are moved into place.
 RESULT_TABLES := results/phantom-table.tex results/recon-table.tex results/soa-acct-table.tex \
-                 results/correlation.tex results/sufficient-table.tex results/numbers.tex
+                 results/correlation.tex results/sufficient-table.tex results/data-tables.tex results/numbers.tex
 RESULT_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
                  results/phantom-sensitivity.tsv results/phantom-reading.tsv results/recon-error.tsv results/percent-shift.tsv \
-                 results/soa-acct.tsv results/correlation.tsv results/sufficient.tsv
+                 results/soa-acct.tsv results/correlation.tsv results/sufficient.tsv \
+                 results/territories.tsv results/oflynn-table.tsv results/vorobtsova-table.tsv
 SOA_POINTS    := build/results/soa-acct-points.tsv
 SUMMARY_TMP   := build/results/summary.tmp
 
-$(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) $(SUFFICIENT) \
+$(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) $(SUFFICIENT) $(DENSITY_RUNS) \
     results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv build/results/phantom-truth.tsv | $(REPORT_TOOLS)
 	@rm -rf $(SUMMARY_TMP) && mkdir -p $(SUMMARY_TMP) results
 	Rscript --vanilla build/scripts/analysis.R in=build/results out=$(SUMMARY_TMP) points=$(SOA_POINTS).tmp \
 	  rates='$(RATES)' variants='$(VARIANTS)' integrators='$(INTEGRATORS)' shapes='$(SHAPES)' \
 	  radii='$(RADII_DATASETS)' shift_metrics='$(SHIFT_METRICS)' densities='$(DENSITIES)' \
-	  readings='$(READINGS)' paper_sigmas='$(PAPER_SIGMAS)'
+	  readings='$(READINGS)' paper_sigmas='$(PAPER_SIGMAS)' paper_densities='$(PAPER_DENSITIES)'
 	@mv $(SOA_POINTS).tmp $(SOA_POINTS)
 	@mv $(addprefix $(SUMMARY_TMP)/,$(notdir $(RESULT_TABLES) $(RESULT_TSVS))) results/
 
@@ -199,7 +211,9 @@ build/interfaces.tex: build/scripts/interfaces.awk $(HEADERS)
 
 # ---------------------------------------------------------------- tables -> figures
 # One rule for every figure: figures/NAME.pdf from build/scripts/NAME.gp and its data files.
-FIGURES := figures/recon-error.pdf figures/percent-shift.pdf figures/soa-acct.pdf figures/profile.pdf
+FIGURES := figures/recon-error.pdf figures/percent-shift.pdf figures/soa-acct.pdf figures/profile.pdf \
+           figures/territories.pdf
+figures/territories.pdf: results/territories.tsv
 figures/recon-error.pdf: results/recon-error.tsv
 figures/percent-shift.pdf: results/percent-shift.tsv
 figures/soa-acct.pdf: $(SOA_POINTS)
