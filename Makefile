@@ -44,7 +44,8 @@ LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES)))
 C_ROOTS := $(addprefix src/,geom.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES)) \
              tortuosity.c unit-tests.c fuzz-readers.c)
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
-           scripts/profile.gp scripts/territories.gp scripts/interfaces.awk scripts/slurm-shards.sh
+           scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
+           scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh
 ROOTS   := $(C_ROOTS) $(SCRIPTS)
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
@@ -116,11 +117,35 @@ $(SUFFICIENT): build/results/sufficient/%.tsv: data/manifest.tsv bin/tortuosity
 	@$(call dataset_files,$(*F)); echo "sufficient rate: $(*F) ($(*D))"; \
 	./bin/tortuosity sufficient -q --integrator $(*D) -o $@ "$${files[@]}"
 
+# Views of the data (the paper's Figure 1): every vessel of the first file of each dataset, raw,
+# and a Salkowski phantom: build/results/views/NAME.tsv.
+VIEWS := $(foreach d,$(DATASETS),build/results/views/$(d).tsv)
+$(VIEWS): build/results/views/%.tsv: data/manifest.tsv bin/tortuosity
+	@mkdir -p $(@D)
+	@$(call dataset_files,$*); ./bin/tortuosity profile -q --rate raw --vessel all -o $@ "$${files[0]}"
+build/results/views/salkowski.tsv: bin/tortuosity
+	@mkdir -p $(@D)
+	./bin/tortuosity phantom --shape salkowski | ./bin/tortuosity profile -q --rate raw -o $@ -
+
+# The Frenet-Serret frame on one period of a sinusoid (the paper's Figure 2), and the coronary
+# centerline of the profile figure with Bullitt's filter at 10X (its Figure 5).
+build/results/sinusoid.tsv: bin/tortuosity
+	awk 'BEGIN { for (i = 0; i <= 24; i++) { x = 8 * atan2(0, -1) * i / 24; print x, 2 * sin(x / 4), 0 } }' \
+	  | ./bin/tortuosity profile -q --rate 2 -o $@ -
+build/results/profile-%-filtered.tsv: bin/tortuosity
+	./bin/tortuosity profile -q --rate $* --vessel 0 --filter -o $@ '$(PROFILE_INPUT)'
+
 # The paper's own densities for its data, in points per mm (Bullitt's 2, O'Flynn's 5,
 # Vorobtsova's 10), applied to the datasets that stand in for them: build/results/density/DATASET.tsv.
 PAPER_DENSITIES := brava-3darteryvis:2 aorta-ct:5 coronary-ct:10
 DENSITY_RUNS    := $(foreach p,$(PAPER_DENSITIES),build/results/density/$(firstword $(subst :, ,$(p))).tsv)
 density_of       = $(lastword $(subst :, ,$(filter $(1):%,$(PAPER_DENSITIES))))
+
+# O'Flynn's curvature and torsion along the arteries at 5 points/mm (its Figure S3), on the aorta.
+build/results/density/aorta-ct-profile.tsv: data/manifest.tsv bin/tortuosity
+	@mkdir -p $(@D)
+	@$(call dataset_files,aorta-ct); ./bin/tortuosity profile -q --rate $(call density_of,aorta-ct)/mm \
+	  --vessel all -o $@ "$${files[0]}"
 
 $(DENSITY_RUNS): build/results/density/%.tsv: data/manifest.tsv bin/tortuosity
 	@mkdir -p $(@D)
@@ -190,14 +215,31 @@ SOA_POINTS    := build/results/soa-acct-points.tsv
 SUMMARY_TMP   := build/results/summary.tmp
 
 $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) $(SUFFICIENT) $(DENSITY_RUNS) \
+    $(foreach r,$(PROFILE_RATES),build/results/profile-$(r).tsv build/results/profile-$(r)-rotation.tsv) \
     results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv build/results/phantom-truth.tsv | $(REPORT_TOOLS)
 	@rm -rf $(SUMMARY_TMP) && mkdir -p $(SUMMARY_TMP) results
 	Rscript --vanilla build/scripts/analysis.R in=build/results out=$(SUMMARY_TMP) points=$(SOA_POINTS).tmp \
 	  rates='$(RATES)' variants='$(VARIANTS)' integrators='$(INTEGRATORS)' shapes='$(SHAPES)' \
 	  radii='$(RADII_DATASETS)' shift_metrics='$(SHIFT_METRICS)' densities='$(DENSITIES)' \
-	  readings='$(READINGS)' paper_sigmas='$(PAPER_SIGMAS)' paper_densities='$(PAPER_DENSITIES)'
+	  readings='$(READINGS)' paper_sigmas='$(PAPER_SIGMAS)' paper_densities='$(PAPER_DENSITIES)' \
+	  profile_rates='$(PROFILE_RATES)'
 	@mv $(SOA_POINTS).tmp $(SOA_POINTS)
 	@mv $(addprefix $(SUMMARY_TMP)/,$(notdir $(RESULT_TABLES) $(RESULT_TSVS))) results/
+
+# The paper's tables and figures with their counterparts (report, near the start): every file
+# a row names must exist.
+results/concordance.tsv: paper.nw $(RESULT_TABLES) $(RESULT_TSVS) $(FIGURES)
+	@mkdir -p results
+	{ printf 'item\tlabel\tstatus\tfile\tnote\n'; notangle -R'concordance' $< | sed 's/ *| */\t/g'; } >$@.tmp
+	awk -F'\t' 'NR > 1 && $$4 != "-" && system("test -f " $$4) { print "$@: " $$1 ": no file " $$4; bad = 1 } \
+	  END { exit bad }' $@.tmp >&2 || { rm -f $@.tmp; exit 1; }
+	mv $@.tmp $@
+build/concordance.tex: results/concordance.tsv
+	awk -F'\t' 'NR == 1 { print "\\begin{center}\\small\\begin{tabular}{lllp{7.2cm}}\\toprule"; \
+	                      print "paper & status & file & note\\\\\\midrule"; next } \
+	   { gsub(/_/, "\\_", $$4); sub(/-reproducible/, " reproducible", $$3); \
+	     printf "%s & %s & \\texttt{%s} & %s\\\\\n", $$1, $$3, $$4, $$5 } \
+	   END { print "\\bottomrule\\end{tabular}\\end{center}" }' $< >$@.tmp && mv $@.tmp $@
 
 # The report's table of metrics and list of interfaces come from the code itself.
 build/metrics-table.tex: bin/tortuosity
@@ -212,7 +254,13 @@ build/interfaces.tex: build/scripts/interfaces.awk $(HEADERS)
 # ---------------------------------------------------------------- tables -> figures
 # One rule for every figure: figures/NAME.pdf from build/scripts/NAME.gp and its data files.
 FIGURES := figures/recon-error.pdf figures/percent-shift.pdf figures/soa-acct.pdf figures/profile.pdf \
-           figures/territories.pdf
+           figures/territories.pdf figures/data-views.pdf figures/frame.pdf figures/profile-filtered.pdf \
+           figures/aorta-profile.pdf
+figures/data-views.pdf: build/results/views/salkowski.tsv $(VIEWS)
+figures/frame.pdf: build/results/sinusoid.tsv
+figures/aorta-profile.pdf: build/results/density/aorta-ct-profile.tsv
+figures/profile-filtered.pdf: build/results/profile-$(lastword $(PROFILE_RATES)).tsv \
+                              build/results/profile-$(lastword $(PROFILE_RATES))-filtered.tsv
 figures/territories.pdf: results/territories.tsv
 figures/recon-error.pdf: results/recon-error.tsv
 figures/percent-shift.pdf: results/percent-shift.tsv
@@ -241,14 +289,14 @@ cd build && for pass in 1 2 3; do \
 @! grep -E 'Warning.*undefined|Citation.*undefined' build/pdflatex.log
 endef
 
-REPORT_INPUTS := build/paper.tex build/metrics-table.tex build/interfaces.tex
+REPORT_INPUTS := build/paper.tex build/metrics-table.tex build/interfaces.tex build/concordance.tex
 
 build/paper.pdf: $(REPORT_INPUTS) $(RESULT_TABLES) $(FIGURES)
 	$(run_pdflatex)
 
 .PHONY: report reproduce paper
 report: build/paper.pdf
-reproduce: build/paper.pdf
+reproduce: build/paper.pdf results/concordance.tsv
 
 # The PDF from the committed results/ and figures/, for readers without the data: nothing is re-run.
 paper: $(REPORT_INPUTS) | $(REPORT_TOOLS)
