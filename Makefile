@@ -230,7 +230,9 @@ $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS
 # a row names must exist.
 results/concordance.tsv: paper.nw $(RESULT_TABLES) $(RESULT_TSVS) $(FIGURES)
 	@mkdir -p results
-	{ printf 'item\tlabel\tstatus\tfile\tnote\n'; notangle -R'concordance' $< | sed 's/ *| */\t/g'; } >$@.tmp
+	{ printf 'item\tlabel\tstatus\tfile\tnote\n'; notangle -R'concordance' $< \
+	  | awk '/^ / { sub(/^ +/, " "); row = row $$0; next } row != "" { print row } { row = $$0 } END { print row }' \
+	  | sed 's/ *| */\t/g'; } >$@.tmp
 	awk -F'\t' 'NR > 1 && $$4 != "-" && system("test -f " $$4) { print "$@: " $$1 ": no file " $$4; bad = 1 } \
 	  END { exit bad }' $@.tmp >&2 || { rm -f $@.tmp; exit 1; }
 	mv $@.tmp $@
