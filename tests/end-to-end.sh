@@ -105,6 +105,21 @@ study_threads() {   # the summary of a cell does not depend on the number of thr
 }
 check "phantom-study: 60 realisations in every row, the same with 1 and 3 threads" study_threads
 
+# The paper's 16 tables and figures, each with a committed counterpart or a reason.
+concordance_complete() {
+  local root; root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+  awk -F'\t' -v root="$root" 'NR == 1 { next } { items[$1] = 1; n++
+      if ($3 !~ /^(reproduced|stand-in|not-reproducible)$/) { print "bad status: " $0; bad = 1 }
+      if ($3 == "not-reproducible" && $5 == "") { print "no reason: " $1; bad = 1 }
+      if ($3 != "not-reproducible" && system("test -f \"" root "/" $4 "\"")) { print "no file: " $4; bad = 1 } }
+    END { for (k = 1; k <= 7; k++) if (!(("Figure " k) in items)) { print "missing Figure " k; bad = 1 }
+          for (k = 1; k <= 2; k++) if (!(("Table " k) in items)) { print "missing Table " k; bad = 1 }
+          for (k = 1; k <= 3; k++) if (!(("Figure S" k) in items)) { print "missing Figure S" k; bad = 1 }
+          for (k = 1; k <= 4; k++) if (!(("Table S" k) in items)) { print "missing Table S" k; bad = 1 }
+          exit bad || n != 16 }' "$root/results/concordance.tsv"
+}
+check "results/concordance.tsv: the paper's 16 items, each with a committed file or a reason" concordance_complete
+
 "$T" phantom --shape helix --points 1000000 >"$work/long.txt"
 check "a vessel of 10^6 points is measured (raw and 1X) with exact ACCT" bash -c \
   "'$T' metrics -q --rates raw,1 '$work/long.txt' | awk -F'\t' 'NR>1 && \$NF==\"ok\" && \$14>0.2235 && \$14<0.2237 {n++} END {exit n!=2}'"
