@@ -46,7 +46,7 @@ C_ROOTS := $(addprefix src/,geom.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(M
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh
-ROOTS   := $(C_ROOTS) $(SCRIPTS)
+ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
 build/src/%: paper.nw | $(BUILD_TOOLS)
