@@ -283,11 +283,19 @@ figures/%.pdf: build/scripts/%.gp | $(REPORT_TOOLS)
 build/paper.tex: paper.nw | $(REPORT_TOOLS)
 	noweave -delay -index paper.nw | cpif $@
 
+# FORCE_SOURCE_DATE: the date on the page and in the PDF is SOURCE_DATE_EPOCH's, not the build day's.
 define run_pdflatex
 cd build && for pass in 1 2 3; do \
-  pdflatex -interaction=nonstopmode -halt-on-error paper.tex >pdflatex.log \
+  FORCE_SOURCE_DATE=1 pdflatex -interaction=nonstopmode -halt-on-error paper.tex >pdflatex.log \
   || { tail -30 pdflatex.log; exit 1; }; done
 @! grep -E 'Warning.*undefined|Citation.*undefined' build/pdflatex.log
+@$(check_print)
+endef
+# Fit for print: no line wider than the text by more than 1 pt, no bitmap (Type 3) font.
+define check_print
+awk '/^Overfull \\hbox/ { w = $$3; sub(/\(/, "", w); if (w + 0 > 1) { print "build/paper.log: " $$0; bad = 1 } } \
+  END { exit bad }' build/paper.log \
+&& { ! pdffonts build/paper.pdf | grep 'Type 3' || { echo "build/paper.pdf: a Type 3 (bitmap) font"; exit 1; }; }
 endef
 
 REPORT_INPUTS := build/paper.tex build/metrics-table.tex build/interfaces.tex build/concordance.tex
