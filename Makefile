@@ -253,31 +253,46 @@ build/interfaces.tex: build/scripts/interfaces.awk $(HEADERS)
 	awk -f $< $(filter %.h,$^) >$@.tmp && mv $@.tmp $@
 
 # ---------------------------------------------------------------- tables -> figures
-# One rule for every figure: figures/NAME.pdf from build/scripts/NAME.gp and its data files.
-FIGURES := figures/recon-error.pdf figures/percent-shift.pdf figures/soa-acct.pdf figures/profile.pdf \
-           figures/territories.pdf figures/data-views.pdf figures/frame.pdf figures/profile-filtered.pdf \
-           figures/aorta-profile.pdf
-figures/data-views.pdf: build/results/views/salkowski.tsv $(VIEWS)
-figures/frame.pdf: build/results/sinusoid.tsv
-figures/aorta-profile.pdf: build/results/density/aorta-ct-profile.tsv
-figures/profile-filtered.pdf: build/results/profile-$(lastword $(PROFILE_RATES)).tsv \
-                              build/results/profile-$(lastword $(PROFILE_RATES))-filtered.tsv
-figures/territories.pdf: results/territories.tsv
-figures/recon-error.pdf: results/recon-error.tsv
-figures/percent-shift.pdf: results/percent-shift.tsv
-figures/soa-acct.pdf: $(SOA_POINTS)
-figures/profile.pdf: $(foreach r,$(PROFILE_RATES),build/results/profile-$(r).tsv) \
-                     $(foreach r,$(PROFILE_RATES),build/results/profile-$(r)-rotation.tsv)
+# One rule for every figure: figures/NAME.tex (the text, set by LaTeX) and figures/NAME.pdf (the
+# lines) from build/scripts/NAME.gp and its data files FIG_INPUTS_NAME; figures/NAME.png, the
+# whole figure as an image, from both.
+FIGURE_NAMES := recon-error percent-shift soa-acct profile profile-filtered territories data-views \
+                frame aorta-profile
+FIGURES      := $(foreach f,$(FIGURE_NAMES),figures/$(f).tex figures/$(f).pdf)
+FIGURE_PNGS  := $(foreach f,$(FIGURE_NAMES),figures/$(f).png)
+FIG_INPUTS_recon-error      := results/recon-error.tsv
+FIG_INPUTS_percent-shift    := results/percent-shift.tsv
+FIG_INPUTS_soa-acct         := $(SOA_POINTS)
+FIG_INPUTS_profile          := $(foreach r,$(PROFILE_RATES),build/results/profile-$(r).tsv) \
+                               $(foreach r,$(PROFILE_RATES),build/results/profile-$(r)-rotation.tsv)
+FIG_INPUTS_profile-filtered := build/results/profile-$(lastword $(PROFILE_RATES)).tsv \
+                               build/results/profile-$(lastword $(PROFILE_RATES))-filtered.tsv
+FIG_INPUTS_territories      := results/territories.tsv
+FIG_INPUTS_data-views       := build/results/views/salkowski.tsv $(VIEWS)
+FIG_INPUTS_frame            := build/results/sinusoid.tsv
+FIG_INPUTS_aorta-profile    := build/results/density/aorta-ct-profile.tsv
+DATASET_NAMES := $(shell awk -F'\t' 'NR > 1 { gsub(/ /, "~", $$7); printf "%s ", $$7 }' data/manifest.tsv)
 
 # cairo 1.16 stamps the wall-clock time; replace it (same length) so figures are byte-identical.
 PDF_DATE = $(shell date -u -d @$(SOURCE_DATE_EPOCH) +%Y%m%d%H%M%S)
-figures/%.pdf: build/scripts/%.gp | $(REPORT_TOOLS)
-	@mkdir -p figures
-	gnuplot -e "inputs='$(filter-out $<,$^)'; outfile='$@.tmp'" \
-	  -e "datasets='$(DATASETS)'; rates='$(RATES)'; profile_rates='$(PROFILE_RATES)'" \
-	  -e "shift_metrics='$(SHIFT_METRICS)'" $<
-	perl -0777 -pi -e 's{/CreationDate \(D:\d{14}Z\)}{/CreationDate (D:$(PDF_DATE)Z)}' $@.tmp
-	mv $@.tmp $@
+figures/%.tex figures/%.pdf: build/scripts/%.gp $$(FIG_INPUTS_$$*) | $(REPORT_TOOLS)
+	@mkdir -p figures build/fig
+	gnuplot -e "inputs='$(FIG_INPUTS_$*)'; outfile='build/fig/$*.tex'" \
+	  -e "datasets='$(DATASETS)'; dataset_names='$(DATASET_NAMES)'; variants='$(VARIANTS)'" \
+	  -e "rates='$(RATES)'; profile_rates='$(PROFILE_RATES)'; shift_metrics='$(SHIFT_METRICS)'" $<
+	perl -0777 -pi -e 's{/CreationDate \(D:\d{14}Z\)}{/CreationDate (D:$(PDF_DATE)Z)}' build/fig/$*.pdf
+	sed 's#{build/fig/#{../figures/#' build/fig/$*.tex >build/fig/$*.tex.tmp
+	mv build/fig/$*.pdf figures/$*.pdf && mv build/fig/$*.tex.tmp figures/$*.tex
+
+# The PNG twin: the figure alone on a page of its own size (its picture is in units of 0.05 bp).
+figures/%.png: figures/%.tex figures/%.pdf | $(REPORT_TOOLS)
+	@size=$$(sed -n 's/.*\\begin{picture}(\([0-9.]*\),\([0-9.]*\)).*/\1 \2/p' $<); \
+	w=$$(echo $$size | awk '{ print $$1 / 20 }'); h=$$(echo $$size | awk '{ print $$2 / 20 }'); \
+	cd build && FORCE_SOURCE_DATE=1 pdflatex -interaction=nonstopmode -halt-on-error -jobname=png-$* \
+	  "\documentclass{article}\usepackage[paperwidth=$${w}bp,paperheight=$${h}bp,margin=0pt]{geometry}\
+	   \usepackage{graphicx,xcolor}\pagestyle{empty}\begin{document}\noindent{\small\input{../$<}}\end{document}" \
+	  >png-$*.log || { tail -20 png-$*.log; exit 1; }
+	pdftoppm -r 150 -png -singlefile build/png-$*.pdf $(basename $@)
 
 # ---------------------------------------------------------------- tables and figures -> report
 build/paper.tex: paper.nw | $(REPORT_TOOLS)
@@ -305,7 +320,7 @@ build/paper.pdf: $(REPORT_INPUTS) $(RESULT_TABLES) $(FIGURES)
 
 .PHONY: report reproduce paper
 report: build/paper.pdf
-reproduce: results/concordance.tsv build/paper.pdf
+reproduce: results/concordance.tsv build/paper.pdf $(FIGURE_PNGS)
 	@$(check_concordance)
 
 # The PDF from the committed results/ and figures/, for readers without the data: nothing is re-run.
