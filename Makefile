@@ -75,11 +75,14 @@ DATASETS       := $(shell awk -F'\t' 'NR > 1 { print $$1 }' data/manifest.tsv)
 RADII_DATASETS := $(shell awk -F'\t' 'NR > 1 && $$5 != "none" { print $$1 }' data/manifest.tsv)
 RATES          := 1 2 10 100
 INTEGRATORS    := backward-euler rotation bishop
-VARIANTS       := $(INTEGRATORS) filtered          # filtered: Bullitt's filter, backward Euler
+# filtered: Bullitt's filter, backward Euler. Names in words, for tables and figures (~ is a space).
+VARIANTS       := $(INTEGRATORS) filtered
+VARIANT_NAMES  := backward~Euler rotation Bishop filtered~(backward~Euler)
 SHAPES         := circle helix salkowski
 NOISES         := clean noisy
 PROFILE_RATES  := 1 10
-SHIFT_METRICS  := AC AT ACCT TC TT TCCT TC_L TT_L TCCT_L SOA IC_kappa IC_N   # the paper's Figure 6
+# The twelve metrics of the paper's Figure 6.
+SHIFT_METRICS  := AC AT ACCT TC TT TCCT TC_L TT_L TCCT_L SOA IC_kappa IC_N
 comma := ,
 space := $(subst ,, )
 RATE_LIST := $(subst $(space),$(comma),$(RATES))
@@ -160,7 +163,8 @@ SIGMAS       := 0.0005 0.001 0.1
 READINGS     := sd variance
 DENSITIES    := supplement caption
 STUDY_COUNT  := 1000
-PAPER_SIGMAS := circle:0.0005 helix:0.1 salkowski:0.001   # the one sigma the paper gives each shape
+# The one sigma the paper gives each shape.
+PAPER_SIGMAS := circle:0.0005 helix:0.1 salkowski:0.001
 # The paper's stated fit: quintic (C4), no more than 20 basis functions (15 segments); its
 # penalty order is not stated, Eilers and Marx's usual second order is taken.
 FIT_package :=
@@ -219,7 +223,8 @@ $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS
     results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv build/results/phantom-truth.tsv | $(REPORT_TOOLS)
 	@rm -rf $(SUMMARY_TMP) && mkdir -p $(SUMMARY_TMP) results
 	Rscript --vanilla build/scripts/analysis.R in=build/results out=$(SUMMARY_TMP) points=$(SOA_POINTS).tmp \
-	  rates='$(RATES)' variants='$(VARIANTS)' integrators='$(INTEGRATORS)' shapes='$(SHAPES)' \
+	  rates='$(RATES)' variants='$(VARIANTS)' variant_names='$(VARIANT_NAMES)' integrators='$(INTEGRATORS)' \
+	  shapes='$(SHAPES)' \
 	  radii='$(RADII_DATASETS)' shift_metrics='$(SHIFT_METRICS)' densities='$(DENSITIES)' \
 	  readings='$(READINGS)' paper_sigmas='$(PAPER_SIGMAS)' paper_densities='$(PAPER_DENSITIES)' \
 	  profile_rates='$(PROFILE_RATES)'
@@ -278,7 +283,8 @@ PDF_DATE = $(shell date -u -d @$(SOURCE_DATE_EPOCH) +%Y%m%d%H%M%S)
 figures/%.tex figures/%.pdf: build/scripts/%.gp $$(FIG_INPUTS_$$*) | $(REPORT_TOOLS)
 	@mkdir -p figures build/fig
 	gnuplot -e "inputs='$(FIG_INPUTS_$*)'; outfile='build/fig/$*.tex'" \
-	  -e "datasets='$(DATASETS)'; dataset_names='$(DATASET_NAMES)'; variants='$(VARIANTS)'" \
+	  -e "datasets='$(DATASETS)'; dataset_names='$(DATASET_NAMES)'" \
+	  -e "variants='$(VARIANTS)'; variant_names='$(VARIANT_NAMES)'" \
 	  -e "rates='$(RATES)'; profile_rates='$(PROFILE_RATES)'; shift_metrics='$(SHIFT_METRICS)'" $<
 	perl -0777 -pi -e 's{/CreationDate \(D:\d{14}Z\)}{/CreationDate (D:$(PDF_DATE)Z)}' build/fig/$*.pdf
 	sed 's#{build/fig/#{../figures/#' build/fig/$*.tex >build/fig/$*.tex.tmp
