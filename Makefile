@@ -27,7 +27,10 @@ export SOURCE_DATE_EPOCH ?= 1795305600
 CC      ?= cc
 CFLAGS  ?= -O3
 CFLAGS  += -std=c11 -D_GNU_SOURCE -Wall -Wextra -fopenmp
-LDLIBS  := -lgsl -lgslcblas -lm
+# HDF5's paths come from pkg-config once the build tools are installed (hence '=').
+HDF5_CFLAGS = $(shell pkg-config --cflags hdf5)
+HDF5_LIBS   = $(shell pkg-config --libs hdf5)
+LDLIBS   = -lgsl -lgslcblas -lexpat -lz -lcrypto $(HDF5_LIBS) -lm
 
 BUILD_TOOLS  := build/.tools-build
 REPORT_TOOLS := build/.tools-report
@@ -39,9 +42,10 @@ PARALLEL_TOOLS := build/.tools-parallel
 all: bin/tortuosity
 
 MODULES := phantom pipeline pspline stencil metrics frenet study vessel readers   # in the order of paper.nw
-HEADERS := $(addprefix build/src/,geom.h $(addsuffix .h,$(MODULES)))
-LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES)))
-C_ROOTS := $(addprefix src/,geom.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES)) \
+FORMAT_MODULES := vtk npy hdf5                    # the readers' format modules, declared in formats.h
+HEADERS := $(addprefix build/src/,geom.h formats.h $(addsuffix .h,$(MODULES)))
+LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES)))
+C_ROOTS := $(addprefix src/,geom.h formats.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES) $(FORMAT_MODULES)) \
              tortuosity.c unit-tests.c fuzz-readers.c)
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
@@ -60,7 +64,7 @@ build/scripts/%: paper.nw | $(BUILD_TOOLS)
 # Objects also depend on the Makefile, so a change of flags rebuilds them.
 build/obj/%.o: build/src/%.c $(HEADERS) Makefile
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS) -Ibuild/src -c -o $@ $<
+	$(CC) $(CFLAGS) -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
 
 bin/tortuosity: build/obj/tortuosity.o $(LIB_OBJ)
 	@mkdir -p bin
@@ -350,12 +354,12 @@ check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh
 
 # The same suite with AddressSanitizer and UndefinedBehaviorSanitizer; any report is fatal.
 SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
-SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES)))
+SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES)))
 SAN_CC     = $(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS)
 
 build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile
 	@mkdir -p $(dir $@)
-	$(SAN_CC) -Ibuild/src -c -o $@ $<
+	$(SAN_CC) -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
 build/sanitize/unit-tests: build/sanitize/unit-tests.o $(SAN_OBJ)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
 build/sanitize/tortuosity: build/sanitize/tortuosity.o $(SAN_OBJ)
@@ -378,12 +382,12 @@ check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity
 # One libFuzzer harness per reader, seeded from the real files; crashes land in build/fuzz/.
 FUZZ_SECONDS ?= 150
 FUZZ_FORMATS := text csv swc angicart
-LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(MODULES)))
+LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(MODULES) $(FORMAT_MODULES)))
 
 build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(FUZZ_TOOLS)
 	@mkdir -p $(dir $@)
 	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -D_GNU_SOURCE \
-	  -DFUZZ_FORMAT=FORMAT_$(shell echo $* | tr a-z A-Z) -Ibuild/src -o $@ $< $(LIB_SOURCES) $(LDLIBS)
+	  -DFUZZ_FORMAT=FORMAT_$(shell echo $* | tr a-z A-Z) -Ibuild/src $(HDF5_CFLAGS) -o $@ $< $(LIB_SOURCES) $(LDLIBS)
 
 # Seeds: the first 8000 bytes of up to twelve real files of the format (text: generated phantoms).
 # Shell globs, so that names with spaces stay whole.
@@ -460,7 +464,7 @@ clean:
 
 # ---------------------------------------------------------------- tools
 # Debian packages that provide what each stage needs; installed on demand.
-BUILD_PACKAGES  := make gcc libc6-dev noweb libgsl-dev
+BUILD_PACKAGES  := make gcc libc6-dev noweb libgsl-dev libexpat1-dev zlib1g-dev libssl-dev libhdf5-dev pkg-config
 REPORT_PACKAGES := gnuplot-nox r-base-core texlive-latex-base texlive-latex-recommended \
                    texlive-fonts-recommended lmodern
 FUZZ_PACKAGES   := clang libclang-rt-14-dev
@@ -485,7 +489,8 @@ endef
 
 $(BUILD_TOOLS):
 	@mkdir -p build
-	@$(call ensure_packages,$(BUILD_PACKAGES),notangle cpif noroots $(CC),/usr/include/gsl/gsl_bspline.h)
+	@$(call ensure_packages,$(BUILD_PACKAGES),notangle cpif noroots pkg-config $(CC),/usr/include/gsl/gsl_bspline.h \
+	  /usr/include/expat.h /usr/include/zlib.h /usr/include/openssl/evp.h /usr/include/hdf5/serial/hdf5.h)
 	@touch $@
 
 $(REPORT_TOOLS): | $(BUILD_TOOLS)
