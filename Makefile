@@ -66,6 +66,17 @@ build/obj/%.o: build/src/%.c $(HEADERS) Makefile
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
 
+# The version, declared here once, and the commit the program is built from, for --version and
+# the provenance of every result ("+modified" when paper.nw or the Makefile differ from it).
+VERSION := 1.1.0
+build/src/version.h: FORCE | $(BUILD_TOOLS)
+	@mkdir -p $(@D)
+	@commit=$$(git -C '$(CURDIR)' rev-parse --short=12 HEAD 2>/dev/null) || commit=unknown; \
+	if [ $$commit != unknown ] && ! git -C '$(CURDIR)' diff --quiet HEAD -- paper.nw Makefile; then \
+	  commit=$$commit+modified; fi; \
+	printf '#define TORT_VERSION "%s"\n#define TORT_COMMIT "%s"\n' '$(VERSION)' "$$commit" | cpif $@
+build/obj/tortuosity.o build/sanitize/tortuosity.o: build/src/version.h
+
 bin/tortuosity: build/obj/tortuosity.o $(LIB_OBJ)
 	@mkdir -p bin
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
@@ -103,33 +114,52 @@ OPTIONS_filtered       := --filter
 # Every dataset at every rate, measured each way: build/results/VARIANT/DATASET.tsv.
 RUNS := $(foreach v,$(VARIANTS),$(foreach d,$(DATASETS),build/results/$(v)/$(d).tsv))
 # The dataset's files under DATA_DIR, from the manifest (a shell array), or a stop.
+manifest_field = awk -F'\t' -v d='$(1)' '$$1 == d { print $$$(2) }' data/manifest.tsv
 define dataset_files
-pattern=$$(awk -F'\t' -v d='$(1)' '$$1 == d { print $$2 }' data/manifest.tsv); \
+pattern=$$($(call manifest_field,$(1),2)); \
 shopt -s nullglob; files=('$(DATA_DIR)'/$$pattern); \
 if [ $${#files[@]} -eq 0 ]; then \
   echo "$(DATA_DIR)/$$pattern: no such files; give the data directory as DATA_DIR=..." >&2; exit 2; fi
 endef
+# How a dataset is read: its unit, where the manifest gives one, and its reading options.
+read_options = $(shell awk -F'\t' -v d='$(1)' '$$1 == d { if ($$4 ~ /^(mm|um|m)$$/) printf "--units %s ", $$4; \
+                 if ($$8 != "-") printf "%s", $$8 }' data/manifest.tsv)
 
-$(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity
+# Each dataset's files checked against the manifest before any result is made from them: the
+# sha256 of their sha256sum listing (paths relative to DATA_DIR). Checked on every run; the
+# stamp changes only with the digest, so results are remade only when the data change.
+.PHONY: FORCE
+build/data/%.sha256: data/manifest.tsv FORCE
+	@mkdir -p $(@D)
+	@$(call dataset_files,$*); expected=$$($(call manifest_field,$*,9)); \
+	found=$$(cd '$(DATA_DIR)' && files=($$pattern) && sha256sum -- "$${files[@]}" | sha256sum | cut -c1-64); \
+	if [ "$$found" != "$$expected" ]; then \
+	  echo "$(DATA_DIR)/$$pattern: these are not the files the results were made from:" \
+	       "sha256 of their listing $$found, data/manifest.tsv says $$expected" >&2; \
+	  echo "  (list them with: cd $(DATA_DIR) && sha256sum $$pattern)" >&2; exit 2; fi; \
+	echo "$$found" | cmp -s - $@ || echo "$$found" >$@
+
+$(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity build/data/$$(*F).sha256
 	@mkdir -p $(@D)
 	@$(call dataset_files,$(*F)); echo "measure $(*F) ($(*D)): $${#files[@]} file(s)"; \
-	./bin/tortuosity metrics -q --rates $(RATE_LIST) $(OPTIONS_$(*D)) -o $@ "$${files[@]}"
+	./bin/tortuosity metrics -q --rates $(RATE_LIST) $(OPTIONS_$(*D)) $(call read_options,$(*F)) -o $@ "$${files[@]}"
 
 # The smallest sufficient rate per vessel, for the datasets with radii:
 # build/results/sufficient/INTEGRATOR/DATASET.tsv.
 SUFFICIENT := $(foreach i,$(INTEGRATORS),$(foreach d,$(RADII_DATASETS),build/results/sufficient/$(i)/$(d).tsv))
 
-$(SUFFICIENT): build/results/sufficient/%.tsv: data/manifest.tsv bin/tortuosity
+$(SUFFICIENT): build/results/sufficient/%.tsv: data/manifest.tsv bin/tortuosity build/data/$$(*F).sha256
 	@mkdir -p $(@D)
 	@$(call dataset_files,$(*F)); echo "sufficient rate: $(*F) ($(*D))"; \
-	./bin/tortuosity sufficient -q --integrator $(*D) -o $@ "$${files[@]}"
+	./bin/tortuosity sufficient -q --integrator $(*D) $(call read_options,$(*F)) -o $@ "$${files[@]}"
 
 # Views of the data (the paper's Figure 1): every vessel of the first file of each dataset, raw,
 # and a Salkowski phantom: build/results/views/NAME.tsv.
 VIEWS := $(foreach d,$(DATASETS),build/results/views/$(d).tsv)
-$(VIEWS): build/results/views/%.tsv: data/manifest.tsv bin/tortuosity
+$(VIEWS): build/results/views/%.tsv: data/manifest.tsv bin/tortuosity build/data/%.sha256
 	@mkdir -p $(@D)
-	@$(call dataset_files,$*); ./bin/tortuosity profile -q --rate raw --vessel all -o $@ "$${files[0]}"
+	@$(call dataset_files,$*); ./bin/tortuosity profile -q --rate raw --vessel all $(call read_options,$*) \
+	  -o $@ "$${files[0]}"
 build/results/views/salkowski.tsv: bin/tortuosity
 	@mkdir -p $(@D)
 	./bin/tortuosity phantom --shape salkowski | ./bin/tortuosity profile -q --rate raw -o $@ -
@@ -139,8 +169,8 @@ build/results/views/salkowski.tsv: bin/tortuosity
 build/results/sinusoid.tsv: bin/tortuosity
 	awk 'BEGIN { for (i = 0; i <= 24; i++) { x = 8 * atan2(0, -1) * i / 24; print x, 2 * sin(x / 4), 0 } }' \
 	  | ./bin/tortuosity profile -q --rate 2 -o $@ -
-build/results/profile-%-filtered.tsv: bin/tortuosity
-	./bin/tortuosity profile -q --rate $* --vessel 0 --filter -o $@ '$(PROFILE_INPUT)'
+build/results/profile-%-filtered.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
+	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) --filter -o $@ '$(PROFILE_INPUT)'
 
 # The paper's own densities for its data, in points per mm (Bullitt's 2, O'Flynn's 5,
 # Vorobtsova's 10), applied to the datasets that stand in for them: build/results/density/DATASET.tsv.
@@ -149,15 +179,15 @@ DENSITY_RUNS    := $(foreach p,$(PAPER_DENSITIES),build/results/density/$(firstw
 density_of       = $(lastword $(subst :, ,$(filter $(1):%,$(PAPER_DENSITIES))))
 
 # O'Flynn's curvature and torsion along the arteries at 5 points/mm (its Figure S3), on the aorta.
-build/results/density/aorta-ct-profile.tsv: data/manifest.tsv bin/tortuosity
+build/results/density/aorta-ct-profile.tsv: data/manifest.tsv bin/tortuosity build/data/aorta-ct.sha256
 	@mkdir -p $(@D)
 	@$(call dataset_files,aorta-ct); ./bin/tortuosity profile -q --rate $(call density_of,aorta-ct)/mm \
-	  --vessel all -o $@ "$${files[0]}"
+	  --vessel all $(call read_options,aorta-ct) -o $@ "$${files[0]}"
 
-$(DENSITY_RUNS): build/results/density/%.tsv: data/manifest.tsv bin/tortuosity
+$(DENSITY_RUNS): build/results/density/%.tsv: data/manifest.tsv bin/tortuosity build/data/%.sha256
 	@mkdir -p $(@D)
 	@$(call dataset_files,$*); echo "measure $* at $(call density_of,$*) points/mm"; \
-	./bin/tortuosity metrics -q --rates $(call density_of,$*)/mm -o $@ "$${files[@]}"
+	./bin/tortuosity metrics -q --rates $(call density_of,$*)/mm $(call read_options,$*) -o $@ "$${files[@]}"
 
 # The phantom study (report, "The phantom study"): each shape at the paper's three noise
 # parameters, read as a standard deviation and as a variance, at the two densities the paper
@@ -203,13 +233,15 @@ build/results/phantom-truth.tsv: $(foreach s,$(SHAPES),build/results/truth/$(s).
 	  $^ >$@.tmp && mv $@.tmp $@
 
 # One coronary centerline, sample by sample, for the profile figure: profile-RATE[-rotation].tsv.
-PROFILE_INPUT = $(DATA_DIR)/fdenz-coronary/centerlines.lines.csv
-build/results/profile-%-rotation.tsv: bin/tortuosity
+PROFILE_DATASET = coronary-ct
+PROFILE_INPUT   = $(DATA_DIR)/fdenz-coronary/centerlines.npy
+PROFILE_OPTIONS = --vessel 1 $(call read_options,$(PROFILE_DATASET))
+build/results/profile-%-rotation.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 	@mkdir -p $(@D)
-	./bin/tortuosity profile -q --rate $* --vessel 0 --integrator rotation -o $@ '$(PROFILE_INPUT)'
-build/results/profile-%.tsv: bin/tortuosity
+	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) --integrator rotation -o $@ '$(PROFILE_INPUT)'
+build/results/profile-%.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 	@mkdir -p $(@D)
-	./bin/tortuosity profile -q --rate $* --vessel 0 -o $@ '$(PROFILE_INPUT)'
+	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) -o $@ '$(PROFILE_INPUT)'
 
 # ---------------------------------------------------------------- results -> tables
 # Small summaries, committed. R writes into a scratch folder; the files are moved into place.
@@ -253,7 +285,7 @@ build/concordance.tex: results/concordance.tsv
 
 # The report's table of metrics and list of interfaces come from the code itself.
 build/metrics-table.tex: bin/tortuosity
-	./bin/tortuosity metrics --columns | awk -F'\t' \
+	./bin/tortuosity metrics --list-metrics | awk -F'\t' \
 	  'NR == 1 { print "\\begin{tabular}{llll}\\toprule"; \
 	             print "column & unit & defined when the vessel has & meaning \\\\\\midrule" } \
 	   NR > 1  { gsub(/_/, "\\_"); printf "\\texttt{%s} & %s & %s & %s \\\\\n", $$1, $$2 == "" ? "--" : $$2, $$3, $$4 } \
@@ -452,7 +484,7 @@ bench: bench-1 bench-2
 	@cmp build/bench-1.tsv build/bench-2.tsv && echo "bench: output identical for 1 and 2 threads"
 bench-1 bench-2: bench-%: bin/tortuosity
 	@start=$$(date +%s.%N); \
-	./bin/tortuosity metrics -q --jobs $* --rates $(RATE_LIST) $(BENCH_FILES) >build/bench-$*.tsv; \
+	./bin/tortuosity metrics -q --jobs $* --rates $(RATE_LIST) --units mm $(BENCH_FILES) >build/bench-$*.tsv; \
 	end=$$(date +%s.%N); \
 	echo "bench: BraVa $$(($$(wc -l <build/bench-$*.tsv) - 1)) vessel-rates, $* thread(s):" \
 	     "$$(awk -v a=$$start -v b=$$end 'BEGIN { printf "%.2f", b - a }') s"
