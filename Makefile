@@ -6,6 +6,8 @@
 #   make report       build/paper.pdf (runs whatever results it needs)
 #   make paper        build/paper.pdf from the committed results/ and figures/ (no data needed)
 #   make bench        timing of the full BraVa set
+#   make install      program, library, header, pkg-config file and manual page under PREFIX
+#                     (default /usr/local; DESTDIR for staging)
 #   make check-sanitize   the tests under AddressSanitizer and UndefinedBehaviorSanitizer
 #   make fuzz         libFuzzer on each reader (FUZZ_SECONDS per reader, default 150)
 #   make lint         chunk roots of paper.nw against the list below
@@ -36,6 +38,7 @@ BUILD_TOOLS  := build/.tools-build
 REPORT_TOOLS := build/.tools-report
 FUZZ_TOOLS   := build/.tools-fuzz
 PARALLEL_TOOLS := build/.tools-parallel
+TEST_TOOLS   := build/.tools-test
 
 # ---------------------------------------------------------------- the program
 .PHONY: all
@@ -43,14 +46,16 @@ all: bin/tortuosity
 
 MODULES := phantom pipeline pspline stencil metrics frenet study vessel readers   # in the order of paper.nw
 FORMAT_MODULES := vtk npy hdf5                    # the readers' format modules, declared in formats.h
-HEADERS := $(addprefix build/src/,geom.h formats.h $(addsuffix .h,$(MODULES)))
-LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES)))
-C_ROOTS := $(addprefix src/,geom.h formats.h $(addsuffix .h,$(MODULES)) $(addsuffix .c,$(MODULES) $(FORMAT_MODULES)) \
-             tortuosity.c unit-tests.c fuzz-readers.c)
+API_MODULES    := api                             # the library's public interface, tortuosity.h
+HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES)))
+LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES)) \
+             $(addsuffix .c,$(MODULES) $(FORMAT_MODULES) $(API_MODULES)) tortuosity.c unit-tests.c fuzz-readers.c)
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
-           scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh
-ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance
+           scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
+           scripts/man-commands.awk
+ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
 build/src/%: paper.nw | $(BUILD_TOOLS)
@@ -75,7 +80,7 @@ build/src/version.h: FORCE | $(BUILD_TOOLS)
 	if [ $$commit != unknown ] && ! git -C '$(CURDIR)' diff --quiet HEAD -- paper.nw Makefile; then \
 	  commit=$$commit+modified; fi; \
 	printf '#define TORT_VERSION "%s"\n#define TORT_COMMIT "%s"\n' '$(VERSION)' "$$commit" | cpif $@
-build/obj/tortuosity.o build/sanitize/tortuosity.o: build/src/version.h
+build/obj/tortuosity.o build/sanitize/tortuosity.o build/obj/api.o build/sanitize/api.o: build/src/version.h
 
 bin/tortuosity: build/obj/tortuosity.o $(LIB_OBJ)
 	@mkdir -p bin
@@ -83,6 +88,43 @@ bin/tortuosity: build/obj/tortuosity.o $(LIB_OBJ)
 
 build/unit-tests: build/obj/unit-tests.o $(LIB_OBJ)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+# ---------------------------------------------------------------- library, manual page, installation
+# libtortuosity.a: the modules as one object in which only the tort_ names of tortuosity.h stay global.
+build/lib/libtortuosity.a: $(LIB_OBJ)
+	@mkdir -p $(@D)
+	ld -r -o build/lib/tortuosity.o $^
+	nm -g --defined-only build/obj/api.o | awk '$$3 ~ /^tort_/ { print $$3 }' >build/lib/public.syms
+	objcopy --keep-global-symbols=build/lib/public.syms build/lib/tortuosity.o
+	rm -f $@ && ar rcs $@ build/lib/tortuosity.o
+
+PREFIX  ?= /usr/local
+DESTDIR ?=
+# Remade on every run (PREFIX is in it), replaced only when it changes.
+build/tortuosity.pc: paper.nw FORCE | $(BUILD_TOOLS)
+	@notangle -R'tortuosity.pc.in' paper.nw | sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' \
+	  -e 's|@LIBS@|$(filter-out -lm,$(LDLIBS)) -fopenmp -lm|' | cpif $@
+
+# The page: its sections from paper.nw, then each command's --help.
+MAN_DATE = $(shell date -u -d @$(SOURCE_DATE_EPOCH) +%Y-%m-%d)
+build/tortuosity.1: paper.nw bin/tortuosity build/scripts/man-commands.awk
+	{ notangle -R'man/tortuosity.1' paper.nw | sed -e 's|@DATE@|$(MAN_DATE)|' -e 's|@VERSION@|$(VERSION)|'; \
+	  { echo "== main"; ./bin/tortuosity --help; \
+	    for c in metrics profile sufficient phantom phantom-study; do echo "== $$c"; ./bin/tortuosity $$c --help; done; } \
+	  | awk -f build/scripts/man-commands.awk; } >$@.tmp && mv $@.tmp $@
+
+.PHONY: install uninstall
+INSTALLED := bin/tortuosity lib/libtortuosity.a include/tortuosity.h lib/pkgconfig/tortuosity.pc \
+             share/man/man1/tortuosity.1
+install: bin/tortuosity build/lib/libtortuosity.a build/src/tortuosity.h build/tortuosity.pc build/tortuosity.1
+	install -d '$(DESTDIR)$(PREFIX)'/{bin,lib/pkgconfig,include,share/man/man1}
+	install -m 755 bin/tortuosity '$(DESTDIR)$(PREFIX)/bin/'
+	install -m 644 build/lib/libtortuosity.a '$(DESTDIR)$(PREFIX)/lib/'
+	install -m 644 build/src/tortuosity.h '$(DESTDIR)$(PREFIX)/include/'
+	install -m 644 build/tortuosity.pc '$(DESTDIR)$(PREFIX)/lib/pkgconfig/'
+	install -m 644 build/tortuosity.1 '$(DESTDIR)$(PREFIX)/share/man/man1/'
+uninstall:
+	rm -f $(addprefix '$(DESTDIR)$(PREFIX)'/,$(INSTALLED))
 
 # ---------------------------------------------------------------- the experiment grid
 # Declared once; passed to the program, to R and to gnuplot.
@@ -373,7 +415,7 @@ paper: $(REPORT_INPUTS) | $(REPORT_TOOLS)
 # Each suite ends with "[name: ]N passed, N failed"; the totals decide.
 COUNT_LINE := /^([a-z0-9-]+: )?[0-9]+ passed, [0-9]+ failed$$/
 .PHONY: check
-check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh
+check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh | $(TEST_TOOLS)
 	@echo "== unit tests (paper.nw)"
 	@./build/unit-tests | tee build/unit-tests.log
 	@echo "== end-to-end checks (tests/)"
@@ -398,7 +440,7 @@ build/sanitize/tortuosity: build/sanitize/tortuosity.o $(SAN_OBJ)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
 
 .PHONY: check-sanitize
-check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity
+check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity | $(TEST_TOOLS)
 	@echo "== unit tests, sanitized"
 	@ASAN_OPTIONS=detect_leaks=1 ./build/sanitize/unit-tests | tee build/sanitize/unit-tests.log
 	@echo "== end-to-end checks, sanitized"
@@ -500,6 +542,9 @@ BUILD_PACKAGES  := make gcc libc6-dev noweb libgsl-dev libexpat1-dev zlib1g-dev 
 REPORT_PACKAGES := gnuplot-nox r-base-core texlive-latex-base texlive-latex-recommended \
                    texlive-fonts-recommended lmodern
 FUZZ_PACKAGES   := clang libclang-rt-14-dev
+# What the end-to-end checks compare with: VTK's own readers, pandas and R for the provenance
+# sidecar, man for the manual page.
+TEST_PACKAGES   := python3-vtk9 python3-pandas python3-numpy r-base-core man-db groff-base
 TEXMF           := /usr/share/texlive/texmf-dist/tex/latex
 
 # $(call ensure_packages,PACKAGES,COMMANDS,FILES): install PACKAGES unless every command and file exists.
@@ -531,6 +576,11 @@ $(REPORT_TOOLS): | $(BUILD_TOOLS)
 
 $(PARALLEL_TOOLS): | $(BUILD_TOOLS)
 	@$(call ensure_packages,parallel,parallel,)
+	@touch $@
+
+$(TEST_TOOLS): | $(BUILD_TOOLS)
+	@$(call ensure_packages,$(TEST_PACKAGES),man Rscript,/usr/lib/python3/dist-packages/vtkmodules \
+	  /usr/lib/python3/dist-packages/pandas)
 	@touch $@
 
 $(FUZZ_TOOLS): | $(BUILD_TOOLS)

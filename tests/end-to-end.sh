@@ -25,6 +25,52 @@ if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
     "$work/clone/bin/tortuosity" --help >/dev/null
   }
   check "plain 'make' in a fresh clone builds bin/tortuosity" make_builds_program
+
+  # make install into a temporary prefix (and staged under DESTDIR); the manual page renders;
+  # a C program built with pkg-config reads a file and measures a circle through the library.
+  install_and_link() {
+    local prefix=$work/prefix
+    make -s -C "$REPO" install PREFIX="$prefix" >"$work/install.log" 2>&1 || { tail -5 "$work/install.log"; return 1; }
+    make -s -C "$REPO" install PREFIX=/opt/tort DESTDIR="$work/stage" >>"$work/install.log" 2>&1 || return 1
+    [ -x "$work/stage/opt/tort/bin/tortuosity" ] && grep -q '^prefix=/opt/tort$' "$work/stage/opt/tort/lib/pkgconfig/tortuosity.pc" \
+      || { echo "DESTDIR staging"; return 1; }
+    "$prefix/bin/tortuosity" --version | grep -qE '^tortuosity [0-9]+\.[0-9]+\.[0-9]+ \(commit [^)]+\)$' \
+      || { echo "--version"; return 1; }
+    MANWIDTH=80 man -l "$prefix/share/man/man1/tortuosity.1" 2>/dev/null >"$work/man.txt" || { echo "man -l"; return 1; }
+    grep -q 'EXIT STATUS' "$work/man.txt" && grep -q -- '--split-gap' "$work/man.txt" || { echo "man page text"; return 1; }
+    cat >"$work/use-library.c" <<'PROGRAM'
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <tortuosity.h>
+int main(int argc, char **argv)
+{
+    char msg[256];
+    tort_vessels *vs;
+    if (argc != 2 || tort_read_file(argv[1], NULL, &vs, msg, sizeof msg) != 0) { fprintf(stderr, "%s\n", msg); return 1; }
+    const double *xyz, *r;
+    size_t n = tort_vessel_points(vs, 0, &xyz, &r);
+    tort_options opt;
+    tort_options_default(&opt);
+    tort_result res;
+    if (tort_measure(xyz, r, n, "10", &opt, &res, msg, sizeof msg) != 0) { fprintf(stderr, "%s\n", msg); return 1; }
+    int ac = tort_metric_index("AC");
+    printf("%s %zu %s %.6f\n", tort_vessel_label(vs, 0), n, res.status, res.metric[ac]);
+    tort_vessels_free(vs);
+    return 0;
+}
+PROGRAM
+    export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
+    cc -o "$work/use-library" "$work/use-library.c" $(pkg-config --cflags --libs tortuosity) 2>"$work/cc.log" \
+      || { cat "$work/cc.log"; return 1; }
+    awk 'BEGIN { for (i = 0; i < 60; i++) { t = atan2(0, -1) * i / 59; print 5 * cos(t), 5 * sin(t), 0 } }' >"$work/circle.txt"
+    local got; got=$("$work/use-library" "$work/circle.txt") || return 1
+    [ "$(cut -d' ' -f1-3 <<<"$got")" = "1 60 ok" ] && near "$(cut -d' ' -f4 <<<"$got")" 0.2 1e-3 \
+      || { echo "library on a circle of radius 5 mm: $got (want AC 0.2/mm)"; return 1; }
+    ! nm -g --defined-only "$prefix/lib/libtortuosity.a" | awk 'NF == 3 && $3 !~ /^tort_/' | grep -q . \
+      || { echo "names other than tort_ are global in the library"; return 1; }
+  }
+  check "make install: program, man -l, and a C program linked with pkg-config measures a circle" install_and_link
 fi
 
 # ---------------------------------------------------------------- command line
