@@ -235,6 +235,40 @@ if [ -n "${REPO:-}" ] && { command -v parallel >/dev/null || [ "$(id -u)" = 0 ];
   check "make sharded (GNU parallel, 2 jobs, 4 shards) gives the unsharded output" make_sharded_with_parallel
 fi
 
+# ---------------------------------------------------------------- VTK output, read back by VTK
+# VTK's own reader (python3-vtk9) must find every array of 'profile' and every row of 'metrics'.
+PYTHON=${PYTHON:-/usr/bin/python3}
+if "$PYTHON" -c 'import vtk' 2>/dev/null; then
+  "$T" phantom --shape salkowski -o "$work/salk.txt"
+  "$T" phantom --shape helix --count 2 -o "$work/helices.txt"
+  vtp_roundtrip() {   # profile|metrics OPTIONS...: the .vtp and the table of the same command agree
+    local mode=$1; shift
+    "$T" "$mode" -q "$@" >"$work/rt.tsv" && "$T" "$mode" -q -o "$work/rt.vtp" "$@" \
+      && "$PYTHON" "$(dirname "${BASH_SOURCE[0]}")/vtk-roundtrip.py" "$mode" "$work/rt.vtp" "$work/rt.tsv"
+  }
+  check "profile -o .vtp: vtkXMLPolyDataReader reads every point array as the table has it" \
+    vtp_roundtrip profile --rate 10 "$work/salk.txt"
+  check "metrics -o .vtp: every row with samples is a cell with the row's values" \
+    vtp_roundtrip metrics --rates 1,2/mm,10,raw "$work/helices.txt" "$work/salk.txt"
+fi
+
+# ---------------------------------------------------------------- provenance
+provenance_loads() {
+  "$T" metrics -q --rates 1 -o "$work/prov.tsv" "$work/helices.txt" || return 1
+  local side=$work/prov.tsv.provenance.tsv sum
+  sum=$(sha256sum "$work/helices.txt" | cut -c1-64)
+  grep -qP "^input\t$work/helices.txt\t$sum\tmm$" "$side" || { cat "$side"; return 1; }
+  grep -qP '^command\ttortuosity metrics -q --rates 1 -o ' "$side" || return 1
+  Rscript -e "p <- read.delim('$side'); stopifnot(names(p) == c('item', 'value', 'sha256', 'units'), \
+                 p\$sha256[p\$item == 'input'] == '$sum')" >/dev/null 2>&1 || { echo "read.delim"; return 1; }
+  "$PYTHON" -c "import pandas as pd; p = pd.read_csv('$side', sep='\t'); \
+                assert list(p.columns) == ['item', 'value', 'sha256', 'units']; \
+                assert (p[p['item'] == 'input']['sha256'] == '$sum').all()" || { echo "pandas"; return 1; }
+  head -1 "$work/prov.tsv" | grep -q '^file' || { echo "the result's own header changed"; return 1; }
+}
+check "-o FILE writes FILE.provenance.tsv: version, command, inputs with sha256; read.delim and pandas load it" \
+  provenance_loads
+
 # ---------------------------------------------------------------- real data (where present)
 if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ]; then
   brava=("$DATA_DIR"/brava-3darteryvis/allscans/*/*.swc)

@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""Read a .vtp written by tortuosity with VTK's own reader (vtkXMLPolyDataReader) and
+compare every array with the table the same command writes.
+
+  vtk-roundtrip.py profile FILE.vtp FILE.tsv   point arrays against 'profile' columns
+  vtk-roundtrip.py metrics FILE.vtp FILE.tsv   cell arrays against 'metrics' rows
+
+The tables print 9 significant digits, the .vtp keeps doubles: numbers must agree to
+1e-8 relative, an empty field must be NaN, strings must be equal. Exit status 0 when
+everything agrees; otherwise the first difference is printed."""
+import csv
+import math
+import sys
+
+import vtk
+
+# Statuses whose rows have samples, hence a cell in the .vtp (pipeline.h).
+WITH_SAMPLES = {"ok", "endpoints-coincide", "all-filtered"}
+TEXT_COLUMNS = {"file", "vessel", "rate", "status"}
+
+
+def read_vtp(path):
+    reader = vtk.vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    if reader.GetErrorCode() != 0:
+        sys.exit(f"{path}: VTK cannot read it")
+    return reader.GetOutput()
+
+
+def read_tsv(path):
+    with open(path, newline="") as f:
+        rows = [r for r in csv.reader(f, delimiter="\t", quoting=csv.QUOTE_NONE)]
+    header = rows[0]
+    return [dict(zip(header, r)) for r in rows[1:] if r]
+
+
+def same(text, value, where):
+    if text == "":
+        ok = math.isnan(value)
+    else:
+        x = float(text)
+        ok = not math.isnan(value) and abs(value - x) <= 1e-8 * max(1.0, abs(x))
+    if not ok:
+        sys.exit(f"{where}: table {text!r}, VTK {value!r}")
+
+
+def check_profile(poly, rows):
+    n = poly.GetNumberOfPoints()
+    if n != len(rows):
+        sys.exit(f"{n} points in the .vtp, {len(rows)} rows in the table")
+    if poly.GetNumberOfCells() != 1 or poly.GetCell(0).GetNumberOfPoints() != n:
+        sys.exit("expected one polyline through every point")
+    pd = poly.GetPointData()
+    arrays = {  # VTK array -> table columns, one per component
+        "arc_length": ["s"], "curvature": ["kappa"], "torsion": ["tau"], "speed": ["speed"],
+        "tangent": ["Tx", "Ty", "Tz"], "normal": ["Nx", "Ny", "Nz"], "binormal": ["Bx", "By", "Bz"],
+        "in_window": ["in_range"], "reconstruction": ["X", "Y", "Z"], "reconstruction_error": ["err"],
+    }
+    checked = 0
+    for name, columns in arrays.items():
+        a = pd.GetArray(name)
+        if a is None or a.GetNumberOfTuples() != n or a.GetNumberOfComponents() != len(columns):
+            sys.exit(f"point array {name}: missing or of the wrong shape")
+        for j, row in enumerate(rows):
+            for c, col in enumerate(columns):
+                same(row[col], a.GetComponent(j, c), f"point {j} {name}[{c}]")
+                checked += 1
+    pts = poly.GetPoints()
+    for j, row in enumerate(rows):
+        p = pts.GetPoint(j)
+        for c, col in enumerate("xyz"):
+            same(row[col], p[c], f"point {j} coordinate {col}")
+            checked += 1
+    frame = pd.GetArray("frame_defined")
+    for j, row in enumerate(rows):
+        if frame.GetValue(j) != (row["tau"] != ""):
+            sys.exit(f"point {j}: frame_defined {frame.GetValue(j)} but tau {row['tau']!r}")
+    return checked
+
+
+def check_metrics(poly, rows):
+    rows = [r for r in rows if r["status"] in WITH_SAMPLES]
+    if poly.GetNumberOfCells() != len(rows):
+        sys.exit(f"{poly.GetNumberOfCells()} cells in the .vtp, {len(rows)} rows with samples in the table")
+    cd = poly.GetCellData()
+    checked = 0
+    for i, row in enumerate(rows):
+        if poly.GetCell(i).GetNumberOfPoints() != int(row["n"]):
+            sys.exit(f"cell {i}: {poly.GetCell(i).GetNumberOfPoints()} points, the table says n = {row['n']}")
+        for col, text in row.items():
+            a = cd.GetAbstractArray(col)
+            if a is None:
+                sys.exit(f"no cell array {col}")
+            if col in TEXT_COLUMNS:
+                if a.GetValue(i) != text:
+                    sys.exit(f"cell {i} {col}: table {text!r}, VTK {a.GetValue(i)!r}")
+            else:
+                same(text, a.GetValue(i), f"cell {i} {col}")
+            checked += 1
+    return checked
+
+
+def main():
+    mode, vtp, tsv = sys.argv[1:4]
+    poly, rows = read_vtp(vtp), read_tsv(tsv)
+    checked = check_profile(poly, rows) if mode == "profile" else check_metrics(poly, rows)
+    print(f"{vtp}: {poly.GetNumberOfPoints()} points, {poly.GetNumberOfCells()} cells, {checked} values agree")
+
+
+if __name__ == "__main__":
+    main()
