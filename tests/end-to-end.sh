@@ -272,7 +272,7 @@ check "-o FILE writes FILE.provenance.tsv: version, command, inputs with sha256;
 # ---------------------------------------------------------------- real data (where present)
 if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ]; then
   brava=("$DATA_DIR"/brava-3darteryvis/allscans/*/*.swc)
-  "$T" metrics -q "${brava[@]}" >"$work/brava.tsv"
+  "$T" metrics -q --units mm "${brava[@]}" >"$work/brava.tsv"
   check "BraVa allscans: 10,496 vessels" bash -c "[ \$(column vessel '$work/brava.tsv' 2>/dev/null | wc -l) -gt 0 ] || true; \
     awk -F'\t' 'NR>1 && \$3==\"1\"' '$work/brava.tsv' | wc -l | grep -qx 10496"
   check "BraVa at 1,2,10,100X: no NaN or inf anywhere" bash -c "! cut -f4- '$work/brava.tsv' | grep -qiE 'nan|inf'"
@@ -282,6 +282,39 @@ fi
 dat=("$DATA_DIR"/brummer-tortuosity-R/*.dat)
 if [ -f "${dat[0]}" ]; then
   check "Angicart .dat: 141 vessels" bash -c "'$T' metrics -q --rates 1 '${dat[0]}' | tail -n +2 | wc -l | grep -qx 141"
+fi
+# The upstream files against the CSVs derived from them (data/*/PROVENANCE.md): same vessels, same values.
+same_rows() {   # same_rows A.tsv B.tsv RELTOL: same vessels, n_data, L and D1 (L and D1 to RELTOL)
+  paste <(cut -f2,4,6,8 "$1") <(cut -f2,4,6,8 "$2") | awk -F'\t' -v tol="$3" '
+    function off(a, b) { d = a - b; if (d < 0) d = -d; return d > tol * (b < 0 ? -b : b) + 1e-12 }
+    NR > 1 && ($1 != $5 || $2 != $6 || off($3, $7) || off($4, $8)) { print "row " NR ": " $0; bad = 1 }
+    END { exit bad || NR < 2 }'
+}
+vtp=$DATA_DIR/vmtk-aorta/aorta-centerline.vtp
+if [ -f "$vtp" ]; then
+  vtp_as_csv() {
+    "$T" metrics -q --rates raw --trim 0 "$vtp" >"$work/aorta-vtp.tsv" \
+      && "$T" metrics -q --rates raw --trim 0 "${vtp%.vtp}.lines.csv" >"$work/aorta-csv.tsv" \
+      && same_rows "$work/aorta-vtp.tsv" "$work/aorta-csv.tsv" 1e-6 \
+      && [ "$(tail -n +2 "$work/aorta-vtp.tsv" | wc -l)" = 2 ]
+  }
+  check "aorta .vtp (VMTK, zlib, appended base64): the two vessels and values of its .lines.csv" vtp_as_csv
+fi
+npy=("$DATA_DIR"/fdenz-coronary/*centerlines.npy)
+if [ -f "${npy[0]}" ]; then
+  npy_as_csv() {
+    local f n
+    for f in "${npy[@]}"; do
+      "$T" metrics -q --rates raw --trim 0 --split-gap 1 "$f" >"$work/npy.tsv" \
+        && "$T" metrics -q --rates raw --trim 0 "${f%.npy}.lines.csv" >"$work/npy-csv.tsv" || return 1
+      # the CSV numbers its lines from 0, the program its pieces from 1: compare without labels
+      awk -F'\t' 'BEGIN { OFS = "\t" } NR > 1 { $2 = $2 - 1 } 1' "$work/npy.tsv" >"$work/npy0.tsv"
+      same_rows "$work/npy0.tsv" "$work/npy-csv.tsv" 1e-7 || return 1
+      n+=" $(tail -n +2 "$work/npy.tsv" | wc -l)"
+    done
+    [ "$n" = " 18 7" ] || { echo "vessels:$n"; return 1; }
+  }
+  check "coronary .npy with --split-gap 1: 18 and 7 centerlines, as in the .lines.csv files" npy_as_csv
 fi
 aorta=$DATA_DIR/vmtk-aorta/aorta-centerline.lines.csv
 if [ -f "$aorta" ]; then
