@@ -455,7 +455,7 @@ check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity | $(TEST_TOO
 # ---------------------------------------------------------------- fuzzing
 # One libFuzzer harness per reader, seeded from the real files; crashes land in build/fuzz/.
 FUZZ_SECONDS ?= 150
-FUZZ_FORMATS := text csv swc angicart
+FUZZ_FORMATS := text csv swc angicart vtp vtk npy hdf5
 LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(MODULES) $(FORMAT_MODULES)))
 
 build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(FUZZ_TOOLS)
@@ -468,6 +468,19 @@ build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(FUZZ_T
 SEED_GLOBS_swc      := brava-*/*.swc brava-*/*/*.swc brava-*/*/*/*.swc
 SEED_GLOBS_csv      := */*.csv
 SEED_GLOBS_angicart := */*.dat
+SEED_GLOBS_vtp      := */*.vtp
+SEED_GLOBS_npy      := */*.npy
+SEED_GLOBS_hdf5     := */*.h5
+# The binary formats' seeds are whole files (a cut one is only a refused one); so are their inputs.
+FUZZ_MAX_LEN_vtp    := 65536
+FUZZ_MAX_LEN_npy    := 262144
+FUZZ_MAX_LEN_hdf5   := 2000000
+# Legacy VTK: the data have none; two small files, ASCII and binary, made by this program's tests.
+build/fuzz/corpus-vtk/.seeded: bin/tortuosity | $(TEST_TOOLS)
+	@mkdir -p $(@D)
+	/usr/bin/python3 tests/vtk-fixtures.py bin/tortuosity build/fuzz/vtk-fixtures >/dev/null
+	cp build/fuzz/vtk-fixtures/legacy-*.vtk $(@D)/
+	@touch $@
 build/fuzz/corpus-text/.seeded: bin/tortuosity
 	@mkdir -p $(@D)
 	./bin/tortuosity phantom --shape salkowski --sigma 0.01 -o $(@D)/salkowski.txt
@@ -476,12 +489,13 @@ build/fuzz/corpus-text/.seeded: bin/tortuosity
 build/fuzz/corpus-%/.seeded: data/manifest.tsv
 	@mkdir -p $(@D)
 	@shopt -s nullglob; files=($(addprefix '$(DATA_DIR)'/,$(SEED_GLOBS_$*))); n=0; \
-	for f in "$${files[@]:0:12}"; do head -c 8000 "$$f" >$(@D)/seed-$$n; n=$$((n + 1)); done; touch $@
+	for f in "$${files[@]:0:12}"; do head -c $(or $(FUZZ_MAX_LEN_$*),8000) "$$f" >$(@D)/seed-$$n; n=$$((n + 1)); done; \
+	touch $@
 
 # One run per reader; a crash stops with the input saved in build/fuzz/.
 build/fuzz/%.log: build/fuzz/fuzz-% build/fuzz/corpus-%/.seeded
 	@echo "fuzz $* for $(FUZZ_SECONDS) s"
-	@./build/fuzz/fuzz-$* -max_total_time=$(FUZZ_SECONDS) -max_len=16384 -print_final_stats=1 \
+	@./build/fuzz/fuzz-$* -max_total_time=$(FUZZ_SECONDS) -max_len=$(or $(FUZZ_MAX_LEN_$*),16384) -print_final_stats=1 \
 	    -artifact_prefix=build/fuzz/crash-$*- build/fuzz/corpus-$* >$@.tmp 2>&1 \
 	  || { tail -40 $@.tmp; echo "fuzz $*: crash, input saved in build/fuzz/"; exit 1; }
 	@mv $@.tmp $@
