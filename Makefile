@@ -556,9 +556,9 @@ BUILD_PACKAGES  := make gcc libc6-dev noweb libgsl-dev libexpat1-dev zlib1g-dev 
 REPORT_PACKAGES := gnuplot-nox r-base-core texlive-latex-base texlive-latex-recommended \
                    texlive-fonts-recommended lmodern
 FUZZ_PACKAGES   := clang libclang-rt-14-dev
-# What the end-to-end checks compare with: VTK's own readers, pandas and R for the provenance
-# sidecar, man for the manual page.
-TEST_PACKAGES   := python3-vtk9 python3-pandas python3-numpy r-base-core man-db groff-base
+# What the end-to-end checks compare with: VTK's own readers, h5py's files, pandas and R for the
+# provenance sidecar, man for the manual page.
+TEST_PACKAGES   := python3-vtk9 python3-pandas python3-numpy python3-h5py r-base-core man-db groff-base
 TEXMF           := /usr/share/texlive/texmf-dist/tex/latex
 
 # $(call ensure_packages,PACKAGES,COMMANDS,FILES): install PACKAGES unless every command and file exists.
@@ -594,7 +594,7 @@ $(PARALLEL_TOOLS): | $(BUILD_TOOLS)
 
 $(TEST_TOOLS): | $(BUILD_TOOLS)
 	@$(call ensure_packages,$(TEST_PACKAGES),man Rscript,/usr/lib/python3/dist-packages/vtkmodules \
-	  /usr/lib/python3/dist-packages/pandas)
+	  /usr/lib/python3/dist-packages/pandas /usr/lib/python3/dist-packages/h5py)
 	@touch $@
 
 $(FUZZ_TOOLS): | $(BUILD_TOOLS)

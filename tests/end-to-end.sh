@@ -255,6 +255,11 @@ if "$PYTHON" -c 'import vtk' 2>/dev/null; then
              || { tail -3 '$work/vtk-fixtures.log'; exit 1; }"
 fi
 
+if "$PYTHON" -c 'import h5py' 2>/dev/null; then
+  check "HDF5 graph: chains joined, branches, merges and a cycle apart; a bad link refused" \
+    bash -c "'$PYTHON' '$(dirname "${BASH_SOURCE[0]}")/hdf5-network.py' '$T' '$work/hdf5' >/dev/null"
+fi
+
 # ---------------------------------------------------------------- provenance
 provenance_loads() {
   "$T" metrics -q --rates 1 -o "$work/prov.tsv" "$work/helices.txt" || return 1
@@ -318,6 +323,19 @@ if [ -f "${npy[0]}" ]; then
     [ "$n" = " 18 7" ] || { echo "vessels:$n"; return 1; }
   }
   check "coronary .npy with --split-gap 1: 18 and 7 centerlines, as in the .lines.csv files" npy_as_csv
+fi
+h5=$DATA_DIR/bbp-weber-mouse-cortex/sample_3.h5
+if [ -f "$h5" ]; then
+  # 3,080 sections (the rows of sample_3.sections.csv) joined across 51 single-child links:
+  # 3,029 vessels; 55,807 points less the 51 repeated junction points
+  hdf5_counts() {
+    "$T" metrics -q --rates raw --trim 0 "$h5" >"$work/h5.tsv" || return 1
+    local sections; sections=$(tail -n +2 "${h5%.h5}.sections.csv" | cut -d, -f1 | uniq | wc -l)
+    [ "$sections" = 3080 ] && [ "$(tail -n +2 "$work/h5.tsv" | wc -l)" = 3029 ] \
+      && [ "$(awk -F'\t' 'NR > 1 { s += $4 } END { print s }' "$work/h5.tsv")" = 55756 ] \
+      || { echo "sections $sections, vessels and points: $(tail -n +2 "$work/h5.tsv" | wc -l)"; return 1; }
+  }
+  check "mouse cortex .h5: 3,080 sections of the CSV joined into 3,029 vessels of 55,756 points" hdf5_counts
 fi
 aorta=$DATA_DIR/vmtk-aorta/aorta-centerline.lines.csv
 if [ -f "$aorta" ]; then
