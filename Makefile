@@ -206,13 +206,10 @@ build/results/views/salkowski.tsv: bin/tortuosity
 	@mkdir -p $(@D)
 	./bin/tortuosity phantom --shape salkowski | ./bin/tortuosity profile -q --rate raw -o $@ -
 
-# The Frenet-Serret frame on one period of a sinusoid (the paper's Figure 2), and the coronary
-# centerline of the profile figure with Bullitt's filter at 10X (its Figure 5).
+# The Frenet-Serret frame on one period of a sinusoid (the paper's Figure 2).
 build/results/sinusoid.tsv: bin/tortuosity
 	awk 'BEGIN { for (i = 0; i <= 24; i++) { x = 8 * atan2(0, -1) * i / 24; print x, 2 * sin(x / 4), 0 } }' \
 	  | ./bin/tortuosity profile -q --rate 2 -o $@ -
-build/results/profile-%-filtered.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
-	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) --filter -o $@ '$(PROFILE_INPUT)'
 
 # The paper's own densities for its data, in points per mm (Bullitt's 2, O'Flynn's 5,
 # Vorobtsova's 10), applied to the datasets that stand in for them: build/results/density/DATASET.tsv.
@@ -278,6 +275,9 @@ build/results/phantom-truth.tsv: $(foreach s,$(SHAPES),build/results/truth/$(s).
 PROFILE_DATASET = coronary-ct
 PROFILE_INPUT   = $(DATA_DIR)/fdenz-coronary/centerlines.npy
 PROFILE_OPTIONS = --vessel 1 $(call read_options,$(PROFILE_DATASET))
+# The same centerline with Bullitt's filter (the paper's Figure 5).
+build/results/profile-%-filtered.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
+	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) --filter -o $@ '$(PROFILE_INPUT)'
 build/results/profile-%-rotation.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 	@mkdir -p $(@D)
 	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) --integrator rotation -o $@ '$(PROFILE_INPUT)'

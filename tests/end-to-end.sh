@@ -71,6 +71,18 @@ PROGRAM
       || { echo "names other than tort_ are global in the library"; return 1; }
   }
   check "make install: program, man -l, and a C program linked with pkg-config measures a circle" install_and_link
+
+  # A data file that is not the one the manifest names stops make before any result, with a message.
+  if [ -f "$DATA_DIR/vmtk-aorta/aorta-centerline.vtp" ]; then
+    data_digest_checked() {
+      mkdir -p "$work/data/vmtk-aorta"
+      { cat "$DATA_DIR/vmtk-aorta/aorta-centerline.vtp"; echo; } >"$work/data/vmtk-aorta/aorta-centerline.vtp"
+      ! make -s -C "$REPO" build/data/aorta-ct.sha256 DATA_DIR="$work/data" >"$work/digest.log" 2>&1 \
+        && grep -q "aorta-centerline.vtp: these are not the files the results were made from" "$work/digest.log" \
+        || { cat "$work/digest.log"; return 1; }
+    }
+    check "make stops at a data file whose sha256 differs from the manifest's, naming it" data_digest_checked
+  fi
 fi
 
 # ---------------------------------------------------------------- command line
