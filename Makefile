@@ -428,7 +428,7 @@ check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh | $(TEST_TO
 
 # The same suite with AddressSanitizer and UndefinedBehaviorSanitizer; any report is fatal.
 SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
-SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES)))
+SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES) $(API_MODULES)))
 SAN_CC     = $(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS)
 
 build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile
