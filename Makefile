@@ -6,6 +6,7 @@
 #   make report       build/paper.pdf (runs whatever results it needs)
 #   make paper        build/paper.pdf from the committed results/ and figures/ (no data needed)
 #   make bench        timing of the full BraVa set
+#   make memory       peak memory of metrics on 10^4, 10^5 and 10^6 vessels
 #   make install      program, library, header, pkg-config file and manual page under PREFIX
 #                     (default /usr/local; DESTDIR for staging)
 #   make check-sanitize   the tests under AddressSanitizer and UndefinedBehaviorSanitizer
@@ -544,6 +545,17 @@ bench-1 bench-2: bench-%: bin/tortuosity
 	end=$$(date +%s.%N); \
 	echo "bench: BraVa $$(($$(wc -l <build/bench-$*.tsv) - 1)) vessel-rates, $* thread(s):" \
 	     "$$(awk -v a=$$start -v b=$$end 'BEGIN { printf "%.2f", b - a }') s"
+
+# Peak memory of metrics on 10^4, 10^5 and 10^6 two-point vessels (one text file each): it should
+# stay flat, set by one file's bytes and one window of vessels, not by their number.
+MEMORY_SIZES := 10000 100000 1000000
+.PHONY: memory
+memory: bin/tortuosity
+	@for n in $(MEMORY_SIZES); do \
+	  awk -v n=$$n 'BEGIN { for (i = 0; i < n; i++) printf "%d 0 0\n%d 1 0\n\n", i, i }' >build/memory-$$n.txt; \
+	  /usr/bin/time -f "memory: $$n two-point vessels: peak RSS %M KB, %e s" \
+	    ./bin/tortuosity metrics -q --rates $(RATE_LIST) -o build/memory-$$n.tsv build/memory-$$n.txt; \
+	done; rm -f build/memory-*.txt build/memory-*.tsv*
 
 .PHONY: clean
 clean:
