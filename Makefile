@@ -5,7 +5,8 @@
 #   make reproduce    data -> results/ -> figures/ -> build/paper.pdf
 #   make report       build/paper.pdf (runs whatever results it needs)
 #   make paper        build/paper.pdf from the committed results/ and figures/ (no data needed)
-#   make bench        timing of the full BraVa set
+#   make bench        timing of the full BraVa set (median of BENCH_RUNS runs, 1 and 2 threads)
+#   make bench-stages where its time goes, stage by stage (perf)
 #   make memory       peak memory of metrics on 10^4, 10^5 and 10^6 vessels
 #   make install      program, library, header, pkg-config file and manual page under PREFIX
 #                     (default /usr/local; DESTDIR for staging)
@@ -41,6 +42,7 @@ LDLIBS   = -lgsl -lgslcblas -lexpat -lz -lcrypto $(HDF5_LIBS) -lm
 BUILD_TOOLS  := build/.tools-build
 REPORT_TOOLS := build/.tools-report
 FUZZ_TOOLS   := build/.tools-fuzz
+PERF_TOOLS   := build/.tools-perf
 PARALLEL_TOOLS := build/.tools-parallel
 TEST_TOOLS   := build/.tools-test
 
@@ -58,7 +60,7 @@ C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODUL
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
-           scripts/man-commands.awk
+           scripts/man-commands.awk scripts/bench-stages.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
@@ -537,17 +539,49 @@ lint: | $(BUILD_TOOLS)
 	  && echo "lint: chunk roots match the Makefile" \
 	  || { echo "lint: roots of paper.nw ('<') differ from the Makefile ('>'); a misspelled chunk name?"; exit 1; }
 
-# The full BraVa set at the paper's rates, on one and on two threads; the outputs must be identical.
+# The full BraVa set at the paper's rates, BENCH_RUNS times on one and on two threads: the wall
+# time of each run and their median. Every run must give the bytes of the first.
 BENCH_FILES = $(wildcard $(DATA_DIR)/brava-3darteryvis/allscans/*/*.swc)
-.PHONY: bench bench-1 bench-2
-bench: bench-1 bench-2
-	@cmp build/bench-1.tsv build/bench-2.tsv && echo "bench: output identical for 1 and 2 threads"
-bench-1 bench-2: bench-%: bin/tortuosity
+BENCH_RUNS ?= 5
+BENCH_SEGMENTS ?= 20000       # generated noisy helix arcs of ten points, for the cost model
+BENCH_RUN   = ./bin/tortuosity metrics -q --rates $(RATE_LIST) --units mm $(BENCH_FILES)
+.PHONY: bench bench-stages
+bench: bin/tortuosity
+	@rm -f build/bench.tsv; \
+	for j in 1 2; do \
+	  times=; \
+	  for r in $$(seq $(BENCH_RUNS)); do \
+	    start=$$(date +%s.%N); $(BENCH_RUN) --jobs $$j >build/bench-run.tsv; end=$$(date +%s.%N); \
+	    times="$$times $$(awk -v a=$$start -v b=$$end 'BEGIN { printf "%.2f", b - a }')"; \
+	    [ -f build/bench.tsv ] || cp build/bench-run.tsv build/bench.tsv; \
+	    cmp -s build/bench.tsv build/bench-run.tsv || { echo "bench: run $$r on $$j thread(s) gave other bytes"; exit 1; }; \
+	  done; \
+	  echo "bench: BraVa $$(($$(wc -l <build/bench.tsv) - 1)) vessel-rates, $$j thread(s):$$times s, median" \
+	       "$$(printf '%s\n' $$times | sort -n | awk '{ t[NR] = $$1 } \
+	           END { printf "%.2f", NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2 }') s"; \
+	done; \
+	echo "bench: all $$((2 * $(BENCH_RUNS))) runs gave the same bytes"
+	@awk -v n=$(BENCH_SEGMENTS) 'BEGIN { srand(1); for (i = 0; i < n; i++) { for (k = 0; k < 10; k++) \
+	    printf "%.4f %.4f %.4f\n", 2 * cos(0.3 * k) + 0.05 * rand(), 2 * sin(0.3 * k) + 0.05 * rand(), \
+	           0.3 * k + 0.05 * rand(); print "" } }' >build/bench-segments.txt
 	@start=$$(date +%s.%N); \
-	./bin/tortuosity metrics -q --jobs $* --rates $(RATE_LIST) --units mm $(BENCH_FILES) >build/bench-$*.tsv; \
+	./bin/tortuosity metrics -q --jobs 2 --rates $(RATE_LIST) build/bench-segments.txt >build/bench-run.tsv; \
 	end=$$(date +%s.%N); \
-	echo "bench: BraVa $$(($$(wc -l <build/bench-$*.tsv) - 1)) vessel-rates, $* thread(s):" \
-	     "$$(awk -v a=$$start -v b=$$end 'BEGIN { printf "%.2f", b - a }') s"
+	awk -v a=$$start -v b=$$end -v n=$(BENCH_SEGMENTS) 'BEGIN { s = b - a; core = 2 * s / n; \
+	  printf "bench: %d ten-point segments, 2 threads: %.2f s (%.3f core-ms each); 10^7 segments: %.0f core-s," \
+	         " %.1f min on 8 machines of 2 cores\n", n, s, 1e3 * core, 1e7 * core, 1e7 * core / 16 / 60 }'
+	@rm -f build/bench-run.tsv build/bench-segments.txt
+
+# Where one single-thread run of bench spends its time, stage by stage, per vessel and per output
+# sample: perf samples with their call stacks, each given to the innermost stage on its stack.
+bench-stages: bin/tortuosity build/scripts/bench-stages.awk | $(PERF_TOOLS)
+	@perf record -q -e cpu-clock -F 1000 --call-graph dwarf,16384 -o build/bench-stages.data \
+	  $(BENCH_RUN) --jobs 1 >build/bench.tsv
+	@perf script -i build/bench-stages.data -F ip,sym 2>/dev/null | awk -v hz=1000 \
+	  -v vessels=$$(awk -F'\t' 'NR > 1 && !seen[$$1 FS $$2]++' build/bench.tsv | wc -l) \
+	  -v samples=$$(awk -F'\t' 'NR > 1 { n += $$5 } END { print n }' build/bench.tsv) \
+	  -f build/scripts/bench-stages.awk
+	@rm -f build/bench-stages.data
 
 # Peak memory of metrics on 10^4, 10^5 and 10^6 two-point vessels (one text file each): it should
 # stay flat, set by one file's bytes and one window of vessels, not by their number.
@@ -610,6 +644,10 @@ $(PARALLEL_TOOLS): | $(BUILD_TOOLS)
 $(TEST_TOOLS): | $(BUILD_TOOLS)
 	@$(call ensure_packages,$(TEST_PACKAGES),man Rscript,/usr/lib/python3/dist-packages/vtkmodules \
 	  /usr/lib/python3/dist-packages/pandas /usr/lib/python3/dist-packages/h5py)
+	@touch $@
+
+$(PERF_TOOLS): | $(BUILD_TOOLS)
+	@$(call ensure_packages,linux-perf,perf,)
 	@touch $@
 
 $(FUZZ_TOOLS): | $(BUILD_TOOLS)
