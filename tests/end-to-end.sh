@@ -143,6 +143,13 @@ check "1 and 2 threads give identical output (-o file)" cmp "$work/h1.tsv" "$wor
 check "-o leaves no temporary file" bash -c "! ls '$work' | grep -q '\\.tmp\\.'"
 check "same seed gives the same phantoms" bash -c "'$T' phantom --count 3 --sigma 0.1 --seed 9 | cmp - <('$T' phantom --count 3 --sigma 0.1 --seed 9)"
 check "profile has samples and reconstruction" bash -c "'$T' profile --rate 10 '$work/salk.txt' | awk -F'\t' 'NR>1 && \$18==1 {n++} END {exit !(n > 300)}'"
+# --vessel all: every row names its vessel in the last column (the ordinals 1..3; 46 points at 2X: 92 rows).
+profile_all_labelled() {
+  "$T" phantom --shape helix --count 3 --seed 4 | "$T" profile -q --rate 2 --vessel all - >"$work/all.tsv" || return 1
+  awk -F'\t' 'NR == 1 { ok = $NF == "vessel"; next } NF { n[$NF]++ }
+    END { exit !(ok && length(n) == 3 && n[1] == n[2] && n[2] == n[3] && n[1] == 92) }' "$work/all.tsv"
+}
+check "profile --vessel all: the vessel's label on every row" profile_all_labelled
 
 # Densities: 2 points per mm of a 44.72 mm helix is round(89.44) + 1 = 90 samples, 89 steps of 0.5025 mm.
 per_mm_density() {
