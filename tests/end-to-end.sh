@@ -233,6 +233,19 @@ for bad in 0/4 5/4 1/0 x 1/ 2/3x; do
 done
 check "--shard with standard input: exit 2 (the input is read twice)" \
   bash -c "'$T' metrics -q --shard 1/2 - <'$work/shard-a.txt' >/dev/null 2>&1; [ \$? = 2 ]"
+# --split-gap cuts a window of the stream after the reader has handed it on: 5000 two-point
+# vessels in one block are 5000 vessels in a window of 4096, measured as if given apart.
+awk 'BEGIN { for (i = 0; i < 5000; i++) printf "%d 0 0 0.1\n%d 1 0 0.1\n", 10 * i, 10 * i }' >"$work/gaps.txt"
+awk 'BEGIN { for (i = 0; i < 5000; i++) printf "%d 0 0 0.1\n%d 1 0 0.1\n\n", 10 * i, 10 * i }' >"$work/apart.txt"
+split_beyond_window() {   # COMMAND: the cut block and the separate vessels give the same rows
+  "$T" "$1" -q --jobs 2 --split-gap 5 "$work/gaps.txt" >"$work/gaps.tsv" || return 1
+  "$T" "$1" -q --jobs 2 "$work/apart.txt" | cut -f2- | cmp - <(cut -f2- "$work/gaps.tsv") \
+    && [ "$(wc -l <"$work/gaps.tsv")" -gt 5000 ]
+}
+check "--split-gap: 5000 pieces of one window (of 4096) are measured as 5000 vessels apart" \
+  split_beyond_window metrics
+check "sufficient --split-gap: likewise" split_beyond_window sufficient
+
 slurm=${REPO:-.}/build/scripts/slurm-shards.sh
 if [ -f "$slurm" ]; then
   slurm_array_joins_to_whole() {
