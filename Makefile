@@ -516,7 +516,8 @@ fuzz:
 # One metrics run split into SHARDS parts by --shard, run by GNU parallel on JOBS local slots
 # (or on the hosts of SSHLOGIN, which must see this directory at the same path), then joined
 # with the header once; the joined file has the bytes of a single run. For a Slurm cluster,
-# build/scripts/slurm-shards.sh does the same with a job array.
+# build/scripts/slurm-shards.sh does the same with a job array. parallel -q passes every word
+# as it is: a file name may hold spaces, quotes or a ';'.
 #   make sharded FILES='a.swc b.swc' [SHARDS=4] [JOBS=2] [SSHLOGIN=host1,host2] [SHARD_OPTIONS='-q']
 SHARDS        ?= 4
 JOBS          ?= 2
@@ -524,12 +525,14 @@ SHARD_DIR     ?= build/sharded
 SHARD_OPTIONS ?= -q
 .PHONY: sharded
 sharded: bin/tortuosity | $(PARALLEL_TOOLS)
-	@test -n '$(FILES)' || { echo "give the input files: make sharded FILES='...'" >&2; exit 2; }
-	@rm -rf '$(SHARD_DIR)' && mkdir -p '$(SHARD_DIR)'
-	parallel --halt now,fail=1 --jobs $(JOBS) $(if $(SSHLOGIN),--sshlogin $(SSHLOGIN) --workdir $(CURDIR)) \
+	$(if $(strip $(FILES)),,$(error give the input files: make sharded FILES='...'))
+	@[[ '$(SHARDS)' =~ ^[1-9][0-9]*$$ ]] || { echo "SHARDS must be a whole number >= 1, not '$(SHARDS)'" >&2; exit 2; }
+	@mkdir -p '$(SHARD_DIR)' && rm -f '$(SHARD_DIR)'/shard-*.tsv '$(SHARD_DIR)'/all.tsv
+	parallel -q --halt now,fail=1 --jobs $(JOBS) $(if $(SSHLOGIN),--sshlogin $(SSHLOGIN) --workdir $(CURDIR)) \
 	  $(CURDIR)/bin/tortuosity metrics $(SHARD_OPTIONS) --shard {}/$(SHARDS) -o '$(SHARD_DIR)'/shard-{}.tsv \
 	  $(FILES) ::: $$(seq $(SHARDS))
-	awk 'FNR > 1 || NR == 1' '$(SHARD_DIR)'/shard-{1..$(SHARDS)}.tsv >'$(SHARD_DIR)'/all.tsv
+	awk 'FNR > 1 || NR == 1' '$(SHARD_DIR)'/shard-{1..$(SHARDS)}.tsv >'$(SHARD_DIR)'/all.tsv.part
+	mv '$(SHARD_DIR)'/all.tsv.part '$(SHARD_DIR)'/all.tsv
 	@echo "sharded: $(SHARD_DIR)/all.tsv"
 
 # ---------------------------------------------------------------- lint, benchmark, clean

@@ -248,15 +248,32 @@ check "sufficient --split-gap: likewise" split_beyond_window sufficient
 
 slurm=${REPO:-.}/build/scripts/slurm-shards.sh
 if [ -f "$slurm" ]; then
+  slurm_task() {   # slurm_task K [COUNT] ARGS...: array task K of an array of COUNT tasks
+    local k=$1 count=$2; shift 2
+    SLURM_ARRAY_TASK_ID=$k SLURM_ARRAY_TASK_COUNT=$count SLURM_CPUS_PER_TASK=1 TORTUOSITY=$T bash "$slurm" "$@"
+  }
   slurm_array_joins_to_whole() {
     local k
-    for k in 1 2 3 4; do
-      SLURM_ARRAY_TASK_ID=$k SLURM_ARRAY_TASK_COUNT=4 SLURM_CPUS_PER_TASK=1 TORTUOSITY=$T \
-        bash "$slurm" run "$work/slurm" -q -- "${shard_files[@]}" || return 1
-    done
+    for k in 1 2 3 4; do slurm_task $k 4 run "$work/slurm" 4 -q -- "${shard_files[@]}" || return 1; done
     bash "$slurm" join "$work/slurm" 4 | cmp - "$work/unsharded.tsv"
   }
   check "Slurm script (array tasks 1..4 run here, then joined) gives the unsharded output" slurm_array_joins_to_whole
+  slurm_task_again() {   # task 3 submitted again alone (an array of one) still computes shard 3 of 4
+    rm "$work/slurm/shard-3.tsv" && slurm_task 3 1 run "$work/slurm" 4 -q -- "${shard_files[@]}" \
+      && bash "$slurm" join "$work/slurm" 4 | cmp - "$work/unsharded.tsv"
+  }
+  check "Slurm script: a task submitted again alone computes its own shard of N" slurm_task_again
+  slurm_stale_shard() {  # a shard left from a run on other inputs is refused by the join
+    cp -r "$work/slurm" "$work/slurm-stale" \
+      && slurm_task 2 4 run "$work/slurm-stale" 4 -q -- "$work/shard-a.txt" || return 1
+    bash "$slurm" join "$work/slurm-stale" 4 >/dev/null 2>"$work/stale.err"
+    [ $? = 2 ] && grep -q 'shard-2.tsv: not from the run of shard-1.tsv' "$work/stale.err"
+  }
+  check "Slurm script: join refuses a shard from another run (exit 2)" slurm_stale_shard
+  for bad in 0 abc -1; do
+    check "Slurm script: join with N = '$bad': exit 2" \
+      bash -c "bash '$slurm' join '$work/slurm' '$bad' </dev/null >/dev/null 2>&1; [ \$? = 2 ]"
+  done
 fi
 if [ -n "${REPO:-}" ] && { command -v parallel >/dev/null || [ "$(id -u)" = 0 ]; }; then
   make_sharded_with_parallel() {
@@ -265,6 +282,18 @@ if [ -n "${REPO:-}" ] && { command -v parallel >/dev/null || [ "$(id -u)" = 0 ];
     cmp "$work/sharded/all.tsv" "$work/unsharded.tsv"
   }
   check "make sharded (GNU parallel, 2 jobs, 4 shards) gives the unsharded output" make_sharded_with_parallel
+  sharded_odd_names() {   # names with a space, a quote and a ';' pass through parallel as they are
+    local dir="$work/odd dir" out="$work/sharded out"
+    mkdir -p "$dir" && cp "$work/shard-a.txt" "$dir/a b.txt" && cp "$work/shard-b.txt" "$dir/b;echo INJECTED >&2;'.txt"
+    "$T" metrics -q "$dir/a b.txt" "$dir/b;echo INJECTED >&2;'.txt" >"$work/odd.tsv" || return 1
+    make -s -C "$REPO" sharded FILES="'$dir'/*.txt" SHARDS=3 JOBS=2 SHARD_DIR="$out" \
+      >"$work/make-odd.log" 2>&1 || { tail -5 "$work/make-odd.log"; return 1; }
+    ! grep -q INJECTED "$work/make-odd.log" && cmp "$out/all.tsv" "$work/odd.tsv"
+  }
+  check "make sharded: file and folder names with spaces, quotes and ';' reach the program intact" sharded_odd_names
+  check "make sharded SHARDS=0: exit 2, and no joined file" \
+    bash -c "! make -s -C '$REPO' sharded FILES='$work/shard-a.txt' SHARDS=0 SHARD_DIR='$work/sharded0' >/dev/null 2>&1 \
+             && [ ! -e '$work/sharded0/all.tsv' ]"
 fi
 
 # ---------------------------------------------------------------- VTK output, read back by VTK

@@ -166,6 +166,19 @@ o_leaves_only_result() {
 }
 check "-o DIR/out.tsv: afterwards DIR holds only out.tsv and its provenance" o_leaves_only_result
 
+provenance_place_refused() {   # KIND: a directory or a FIFO where FILE.provenance.tsv goes
+  rm -rf "$work/pv" && mkdir "$work/pv"
+  if [ "$1" = directory ]; then mkdir "$work/pv/out.tsv.provenance.tsv"; else mkfifo "$work/pv/out.tsv.provenance.tsv"; fi
+  run timeout 20 "$T" metrics -q --rates 1 -o "$work/pv/out.tsv" "$work/h3.txt"
+  expect_rc 2 && has_message || return 1
+  grep -q "its provenance file .*out.tsv.provenance.tsv is" "$work/stderr" || { cat "$work/stderr"; return 1; }
+  [ "$(ls -A "$work/pv")" = out.tsv.provenance.tsv ] || { echo "directory holds:"; ls -A "$work/pv"; return 1; }
+}
+check "-o FILE with a directory at FILE.provenance.tsv: exit 2 at once, nothing written" \
+  provenance_place_refused directory
+check "-o FILE with a FIFO at FILE.provenance.tsv: exit 2 at once (no wait for a reader), nothing written" \
+  provenance_place_refused fifo
+
 planted_symlinks() {
   local dir=$work/p pid last i
   mkdir "$dir"; printf 'precious\n' >"$work/victim"
