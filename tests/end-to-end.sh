@@ -233,6 +233,9 @@ for bad in 0/4 5/4 1/0 x 1/ 2/3x; do
 done
 check "--shard with standard input: exit 2 (the input is read twice)" \
   bash -c "'$T' metrics -q --shard 1/2 - <'$work/shard-a.txt' >/dev/null 2>&1; [ \$? = 2 ]"
+check "--shard with a pipe (process substitution): exit 2, not an empty second reading" \
+  bash -c "'$T' metrics -q --shard 1/2 <(cat '$work/shard-a.txt') >/dev/null 2>'$work/pipe.err'; [ \$? = 2 ] \
+           && grep -q 'give files, not standard input or a pipe' '$work/pipe.err'"
 # --split-gap cuts a window of the stream after the reader has handed it on: 5000 two-point
 # vessels in one block are 5000 vessels in a window of 4096, measured as if given apart.
 awk 'BEGIN { for (i = 0; i < 5000; i++) printf "%d 0 0 0.1\n%d 1 0 0.1\n", 10 * i, 10 * i }' >"$work/gaps.txt"
