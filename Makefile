@@ -33,7 +33,7 @@ CFLAGS  ?= -O3
 # -fno-math-errno: sqrt and friends never set errno here (nothing reads it), so
 # the compiler may use the square-root instruction without a call beside it.
 # HAVE_INLINE: GSL's element accessors inline (its documented switch), range checks kept.
-CFLAGS  += -std=c11 -D_GNU_SOURCE -Wall -Wextra -fopenmp -fno-math-errno -DHAVE_INLINE
+CFLAGS  += -std=c11 -D_GNU_SOURCE -Wall -Wextra -fopenmp -pthread -fno-math-errno -DHAVE_INLINE
 # HDF5's paths come from pkg-config once the build tools are installed (hence '=').
 HDF5_CFLAGS = $(shell pkg-config --cflags hdf5)
 HDF5_LIBS   = $(shell pkg-config --libs hdf5)
@@ -50,7 +50,7 @@ TEST_TOOLS   := build/.tools-test
 .PHONY: all
 all: bin/tortuosity
 
-MODULES := phantom pipeline pspline stencil metrics frenet study vessel readers   # in the order of paper.nw
+MODULES := phantom pipeline pspline stencil metrics frenet study vessel readers decimal   # in the order of paper.nw
 FORMAT_MODULES := vtk npy hdf5                    # the readers' format modules, declared in formats.h
 API_MODULES    := api                             # the library's public interface, tortuosity.h
 HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES)))

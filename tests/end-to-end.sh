@@ -236,8 +236,8 @@ check "--shard with standard input: exit 2 (the input is read twice)" \
 check "--shard with a pipe (process substitution): exit 2, not an empty second reading" \
   bash -c "'$T' metrics -q --shard 1/2 <(cat '$work/shard-a.txt') >/dev/null 2>'$work/pipe.err'; [ \$? = 2 ] \
            && grep -q 'give files, not standard input or a pipe' '$work/pipe.err'"
-# --split-gap cuts a window of the stream after the reader has handed it on: 5000 two-point
-# vessels in one block are 5000 vessels in a window of 4096, measured as if given apart.
+# --split-gap cuts the vessels after the reader has counted them: 5000 two-point vessels in one
+# block are 5000 vessels in windows of 1024, measured as if given apart.
 awk 'BEGIN { for (i = 0; i < 5000; i++) printf "%d 0 0 0.1\n%d 1 0 0.1\n", 10 * i, 10 * i }' >"$work/gaps.txt"
 awk 'BEGIN { for (i = 0; i < 5000; i++) printf "%d 0 0 0.1\n%d 1 0 0.1\n\n", 10 * i, 10 * i }' >"$work/apart.txt"
 split_beyond_window() {   # COMMAND: the cut block and the separate vessels give the same rows
@@ -245,9 +245,26 @@ split_beyond_window() {   # COMMAND: the cut block and the separate vessels give
   "$T" "$1" -q --jobs 2 "$work/apart.txt" | cut -f2- | cmp - <(cut -f2- "$work/gaps.tsv") \
     && [ "$(wc -l <"$work/gaps.tsv")" -gt 5000 ]
 }
-check "--split-gap: 5000 pieces of one window (of 4096) are measured as 5000 vessels apart" \
+check "--split-gap: 5000 pieces of one block are measured as 5000 vessels apart" \
   split_beyond_window metrics
 check "sufficient --split-gap: likewise" split_beyond_window sufficient
+
+# The reading thread fills windows across the ends of files (64, 128, ... 1024 vessels): seven
+# files of 150 vessels measured together are the files measured one at a time, row for row.
+for k in 1 2 3 4 5 6 7; do
+  "$T" phantom --shape helix --count 150 --points 30 --sigma 0.05 --seed $k >"$work/many-$k.txt"
+done
+windows_across_files() {   # JOBS
+  local k; : >"$work/one-by-one.tsv"
+  for k in 1 2 3 4 5 6 7; do
+    "$T" metrics -q --jobs 1 "$work/many-$k.txt" | awk -v k=$k 'k == 1 || NR > 1' >>"$work/one-by-one.tsv" || return 1
+  done
+  "$T" metrics -q --jobs "$1" "$work"/many-[1-7].txt | cmp - "$work/one-by-one.tsv" \
+    && [ "$(wc -l <"$work/one-by-one.tsv")" = $((1 + 7 * 150 * 4)) ]
+}
+check "windows across files: 7 files of 150 vessels together are the files one by one (1 thread)" \
+  windows_across_files 1
+check "windows across files: likewise on 3 threads" windows_across_files 3
 
 slurm=${REPO:-.}/build/scripts/slurm-shards.sh
 if [ -f "$slurm" ]; then
