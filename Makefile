@@ -435,7 +435,10 @@ check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh | $(TEST_TO
 	      build/unit-tests.log build/end-to-end.log build/reliability.log
 
 # The same suite with AddressSanitizer and UndefinedBehaviorSanitizer; any report is fatal.
-SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+# The sanitizer build is also the baseline x86-64 build (no AVX2 clones of the hot loops): its
+# end-to-end tests compare its output with bin/tortuosity's, byte for byte (REFERENCE).
+SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all \
+             -DTORTUOSITY_BASELINE_ONLY
 SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES) $(API_MODULES)))
 SAN_CC     = $(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS)
 
@@ -448,11 +451,12 @@ build/sanitize/tortuosity: build/sanitize/tortuosity.o $(SAN_OBJ)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
 
 .PHONY: check-sanitize
-check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity | $(TEST_TOOLS)
+check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity bin/tortuosity | $(TEST_TOOLS)
 	@echo "== unit tests, sanitized"
 	@ASAN_OPTIONS=detect_leaks=1 ./build/sanitize/unit-tests | tee build/sanitize/unit-tests.log
 	@echo "== end-to-end checks, sanitized"
-	@ASAN_OPTIONS=detect_leaks=1 DATA_DIR='$(DATA_DIR)' bash tests/end-to-end.sh build/sanitize/tortuosity \
+	@ASAN_OPTIONS=detect_leaks=1 DATA_DIR='$(DATA_DIR)' REFERENCE=bin/tortuosity \
+	  bash tests/end-to-end.sh build/sanitize/tortuosity \
 	  | tee build/sanitize/end-to-end.log
 	@echo "== reliability checks, sanitized"
 	@ASAN_OPTIONS=detect_leaks=1 bash tests/reliability.sh build/sanitize/tortuosity | tee build/sanitize/reliability.log

@@ -375,6 +375,16 @@ check "-o FILE writes FILE.provenance.tsv: version, command, inputs with sha256;
 if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ]; then
   brava=("$DATA_DIR"/brava-3darteryvis/allscans/*/*.swc)
   "$T" metrics -q --units mm "${brava[@]}" >"$work/brava.tsv"
+  # REFERENCE: another build of the program (make check-sanitize gives bin/tortuosity, built with
+  # the AVX2 clones of the hot loops, where this one is built for the x86-64 baseline alone).
+  if [ -n "${REFERENCE:-}" ]; then
+    same_bytes_as_reference() {
+      "$REFERENCE" metrics -q --units mm "${brava[@]}" | cmp - "$work/brava.tsv" || return 1
+      "$REFERENCE" metrics -q "$work/helices.txt" "$work"/many-[1-3].txt \
+        | cmp - <("$T" metrics -q "$work/helices.txt" "$work"/many-[1-3].txt)
+    }
+    check "BraVa and noisy helices: the same bytes as another build ($REFERENCE)" same_bytes_as_reference
+  fi
   check "BraVa allscans: 10,496 vessels" bash -c "[ \$(column vessel '$work/brava.tsv' 2>/dev/null | wc -l) -gt 0 ] || true; \
     awk -F'\t' 'NR>1 && \$3==\"1\"' '$work/brava.tsv' | wc -l | grep -qx 10496"
   check "BraVa at 1,2,10,100X: no NaN or inf anywhere" bash -c "! cut -f4- '$work/brava.tsv' | grep -qiE 'nan|inf'"
