@@ -25,7 +25,12 @@ SHELL := /bin/bash
 .SECONDEXPANSION:
 MAKEFLAGS += --no-builtin-rules
 
+# The tools stages (their Debian packages are listed at the end): TOOLS_build, TOOLS_report, ...
+TOOL_STAGES := build report test fuzz bench parallel
+$(foreach s,$(TOOL_STAGES),$(eval TOOLS_$(s) := build/.tools-$(s)))
+
 DATA_DIR ?= ../shared/data
+START_TIME := $(shell date +%s)
 export SOURCE_DATE_EPOCH ?= 1795305600
 
 CC      ?= cc
@@ -41,13 +46,6 @@ HDF5_CFLAGS = $(shell pkg-config --cflags hdf5)
 HDF5_LIBS   = $(shell pkg-config --libs hdf5)
 LDLIBS   = -lgsl -lgslcblas -lexpat -lz -lcrypto $(HDF5_LIBS) -lm
 
-BUILD_TOOLS  := build/.tools-build
-REPORT_TOOLS := build/.tools-report
-FUZZ_TOOLS   := build/.tools-fuzz
-PERF_TOOLS   := build/.tools-perf
-PARALLEL_TOOLS := build/.tools-parallel
-TEST_TOOLS   := build/.tools-test
-
 # ---------------------------------------------------------------- the program
 .PHONY: all
 all: bin/tortuosity
@@ -62,27 +60,27 @@ C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODUL
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
-           scripts/man-commands.awk scripts/bench-stages.awk
+           scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
-build/src/%: paper.nw | $(BUILD_TOOLS)
+build/src/%: paper.nw | $(TOOLS_build)
 	@mkdir -p $(dir $@)
 	notangle -L -R'src/$*' paper.nw | cpif $@
 
-build/scripts/%: paper.nw | $(BUILD_TOOLS)
+build/scripts/%: paper.nw | $(TOOLS_build)
 	@mkdir -p $(dir $@)
 	notangle -R'scripts/$*' paper.nw | cpif $@
 
 # Objects also depend on the Makefile, so a change of flags rebuilds them.
-build/obj/%.o: build/src/%.c $(HEADERS) Makefile
+build/obj/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
 
 # The version, declared here once, and the commit the program is built from, for --version and
 # the provenance of every result ("+modified" when paper.nw or the Makefile differ from it).
 VERSION := 1.1.0
-build/src/version.h: FORCE | $(BUILD_TOOLS)
+build/src/version.h: FORCE | $(TOOLS_build)
 	@mkdir -p $(@D)
 	@commit=$$(git -C '$(CURDIR)' rev-parse --short=12 HEAD 2>/dev/null) || commit=unknown; \
 	if [ $$commit != unknown ] && ! git -C '$(CURDIR)' diff --quiet HEAD -- paper.nw Makefile; then \
@@ -90,16 +88,16 @@ build/src/version.h: FORCE | $(BUILD_TOOLS)
 	printf '#define TORT_VERSION "%s"\n#define TORT_COMMIT "%s"\n' '$(VERSION)' "$$commit" | cpif $@
 build/obj/tortuosity.o build/sanitize/tortuosity.o build/obj/api.o build/sanitize/api.o: build/src/version.h
 
-bin/tortuosity: build/obj/tortuosity.o $(LIB_OBJ)
+bin/tortuosity: build/obj/tortuosity.o $(LIB_OBJ) | $(TOOLS_build)
 	@mkdir -p bin
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
-build/unit-tests: build/obj/unit-tests.o $(LIB_OBJ)
+build/unit-tests: build/obj/unit-tests.o $(LIB_OBJ) | $(TOOLS_build)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 # ---------------------------------------------------------------- library, manual page, installation
 # libtortuosity.a: the modules as one object in which only the tort_ names of tortuosity.h stay global.
-build/lib/libtortuosity.a: $(LIB_OBJ)
+build/lib/libtortuosity.a: $(LIB_OBJ) | $(TOOLS_build)
 	@mkdir -p $(@D)
 	ld -r -o build/lib/tortuosity.o $^
 	nm -g --defined-only build/obj/api.o | awk '$$3 ~ /^tort_/ { print $$3 }' >build/lib/public.syms
@@ -109,13 +107,13 @@ build/lib/libtortuosity.a: $(LIB_OBJ)
 PREFIX  ?= /usr/local
 DESTDIR ?=
 # Remade on every run (PREFIX is in it), replaced only when it changes.
-build/tortuosity.pc: paper.nw FORCE | $(BUILD_TOOLS)
+build/tortuosity.pc: paper.nw FORCE | $(TOOLS_build)
 	@notangle -R'tortuosity.pc.in' paper.nw | sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' \
 	  -e 's|@LIBS@|$(filter-out -lm,$(LDLIBS)) -fopenmp -lm|' | cpif $@
 
 # The page: its sections from paper.nw, then each command's --help.
 MAN_DATE = $(shell date -u -d @$(SOURCE_DATE_EPOCH) +%Y-%m-%d)
-build/tortuosity.1: paper.nw bin/tortuosity build/scripts/man-commands.awk
+build/tortuosity.1: paper.nw bin/tortuosity build/scripts/man-commands.awk | $(TOOLS_build)
 	{ notangle -R'man/tortuosity.1' paper.nw | sed -e 's|@DATE@|$(MAN_DATE)|' -e 's|@VERSION@|$(VERSION)|'; \
 	  { echo "== main"; ./bin/tortuosity --help; \
 	    for c in metrics profile sufficient phantom phantom-study; do echo "== $$c"; ./bin/tortuosity $$c --help; done; } \
@@ -216,6 +214,7 @@ build/results/views/salkowski.tsv: bin/tortuosity
 
 # The Frenet-Serret frame on one period of a sinusoid (the paper's Figure 2).
 build/results/sinusoid.tsv: bin/tortuosity
+	@mkdir -p $(@D)
 	awk 'BEGIN { for (i = 0; i <= 24; i++) { x = 8 * atan2(0, -1) * i / 24; print x, 2 * sin(x / 4), 0 } }' \
 	  | ./bin/tortuosity profile -q --rate 2 -o $@ -
 
@@ -285,6 +284,7 @@ PROFILE_INPUT   = $(DATA_DIR)/fdenz-coronary/centerlines.npy
 PROFILE_OPTIONS = --vessel 1 $(call read_options,$(PROFILE_DATASET))
 # The same centerline with Bullitt's filter (the paper's Figure 5).
 build/results/profile-%-filtered.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
+	@mkdir -p $(@D)
 	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) --filter -o $@ '$(PROFILE_INPUT)'
 build/results/profile-%-rotation.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 	@mkdir -p $(@D)
@@ -306,7 +306,7 @@ SUMMARY_TMP   := build/results/summary.tmp
 
 $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) $(SUFFICIENT) $(DENSITY_RUNS) \
     $(foreach r,$(PROFILE_RATES),build/results/profile-$(r).tsv build/results/profile-$(r)-rotation.tsv) \
-    results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv build/results/phantom-truth.tsv | $(REPORT_TOOLS)
+    results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv build/results/phantom-truth.tsv | $(TOOLS_report)
 	@rm -rf $(SUMMARY_TMP) && mkdir -p $(SUMMARY_TMP) results
 	Rscript --vanilla build/scripts/analysis.R in=build/results out=$(SUMMARY_TMP) points=$(SOA_POINTS).tmp \
 	  rates='$(RATES)' variants='$(VARIANTS)' variant_names='$(VARIANT_NAMES)' integrators='$(INTEGRATORS)' \
@@ -319,7 +319,7 @@ $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS
 
 # The paper's tables and figures with their counterparts (report, near the start), from the
 # concordance chunk; 'make reproduce' checks that every file a row names exists.
-results/concordance.tsv: paper.nw | $(BUILD_TOOLS)
+results/concordance.tsv: paper.nw | $(TOOLS_build)
 	@mkdir -p results
 	{ printf 'item\tlabel\tstatus\tfile\tnote\n'; notangle -R'concordance' $< \
 	  | awk '/^ / { sub(/^ +/, " "); row = row $$0; next } row != "" { print row } { row = $$0 } END { print row }' \
@@ -366,7 +366,7 @@ DATASET_NAMES := $(shell awk -F'\t' 'NR > 1 { gsub(/ /, "~", $$7); printf "%s ",
 
 # cairo 1.16 stamps the wall-clock time; replace it (same length) so figures are byte-identical.
 PDF_DATE = $(shell date -u -d @$(SOURCE_DATE_EPOCH) +%Y%m%d%H%M%S)
-figures/%.tex figures/%.pdf: build/scripts/%.gp $$(FIG_INPUTS_$$*) | $(REPORT_TOOLS)
+figures/%.tex figures/%.pdf: build/scripts/%.gp $$(FIG_INPUTS_$$*) | $(TOOLS_report)
 	@mkdir -p figures build/fig
 	gnuplot -e "inputs='$(FIG_INPUTS_$*)'; outfile='build/fig/$*.tex'" \
 	  -e "datasets='$(DATASETS)'; dataset_names='$(DATASET_NAMES)'" \
@@ -377,7 +377,7 @@ figures/%.tex figures/%.pdf: build/scripts/%.gp $$(FIG_INPUTS_$$*) | $(REPORT_TO
 	mv build/fig/$*.pdf figures/$*.pdf && mv build/fig/$*.tex.tmp figures/$*.tex
 
 # The PNG twin: the figure alone on a page of its own size (its picture is in units of 0.05 bp).
-figures/%.png: figures/%.tex figures/%.pdf | $(REPORT_TOOLS)
+figures/%.png: figures/%.tex figures/%.pdf | $(TOOLS_report)
 	@size=$$(sed -n 's/.*\\begin{picture}(\([0-9.]*\),\([0-9.]*\)).*/\1 \2/p' $<); \
 	w=$$(echo $$size | awk '{ print $$1 / 20 }'); h=$$(echo $$size | awk '{ print $$2 / 20 }'); \
 	cd build && FORCE_SOURCE_DATE=1 pdflatex -interaction=nonstopmode -halt-on-error -jobname=png-$* \
@@ -387,7 +387,7 @@ figures/%.png: figures/%.tex figures/%.pdf | $(REPORT_TOOLS)
 	pdftoppm -r 150 -png -singlefile build/png-$*.pdf $(basename $@)
 
 # ---------------------------------------------------------------- tables and figures -> report
-build/paper.tex: paper.nw | $(REPORT_TOOLS)
+build/paper.tex: paper.nw | $(TOOLS_report)
 	noweave -delay -index paper.nw | cpif $@
 
 # FORCE_SOURCE_DATE: the date on the page and in the PDF is SOURCE_DATE_EPOCH's, not the build day's.
@@ -407,23 +407,24 @@ endef
 
 REPORT_INPUTS := build/paper.tex build/metrics-table.tex build/interfaces.tex build/concordance.tex
 
-build/paper.pdf: $(REPORT_INPUTS) $(RESULT_TABLES) $(FIGURES)
+build/paper.pdf: $(REPORT_INPUTS) $(RESULT_TABLES) $(FIGURES) | $(TOOLS_report)
 	$(run_pdflatex)
 
 .PHONY: report reproduce paper
 report: build/paper.pdf
 reproduce: results/concordance.tsv build/paper.pdf $(FIGURE_PNGS)
 	@$(check_concordance)
+	@echo "reproduce: the report is build/paper.pdf ($$(($$(date +%s) - $(START_TIME))) s)"
 
 # The PDF from the committed results/ and figures/, for readers without the data: nothing is re-run.
-paper: $(REPORT_INPUTS) | $(REPORT_TOOLS)
+paper: $(REPORT_INPUTS) | $(TOOLS_report)
 	$(run_pdflatex)
 
 # ---------------------------------------------------------------- tests
 # Each suite ends with "[name: ]N passed, N failed"; the totals decide.
 COUNT_LINE := /^([a-z0-9-]+: )?[0-9]+ passed, [0-9]+ failed$$/
 .PHONY: check
-check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh | $(TEST_TOOLS)
+check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh | $(TOOLS_test)
 	@echo "== unit tests (paper.nw)"
 	@./build/unit-tests | tee build/unit-tests.log
 	@echo "== end-to-end checks (tests/)"
@@ -442,16 +443,16 @@ SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sa
 SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES) $(API_MODULES)))
 SAN_CC     = $(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS)
 
-build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile
+build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
 	@mkdir -p $(dir $@)
 	$(SAN_CC) -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
-build/sanitize/unit-tests: build/sanitize/unit-tests.o $(SAN_OBJ)
+build/sanitize/unit-tests: build/sanitize/unit-tests.o $(SAN_OBJ) | $(TOOLS_build)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
-build/sanitize/tortuosity: build/sanitize/tortuosity.o $(SAN_OBJ)
+build/sanitize/tortuosity: build/sanitize/tortuosity.o $(SAN_OBJ) | $(TOOLS_build)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
 
 .PHONY: check-sanitize
-check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity bin/tortuosity | $(TEST_TOOLS)
+check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity bin/tortuosity | $(TOOLS_test)
 	@echo "== unit tests, sanitized"
 	@ASAN_OPTIONS=detect_leaks=1 ./build/sanitize/unit-tests | tee build/sanitize/unit-tests.log
 	@echo "== end-to-end checks, sanitized"
@@ -470,7 +471,7 @@ FUZZ_SECONDS ?= 150
 FUZZ_FORMATS := text csv swc angicart vtp vtk npy hdf5
 LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(MODULES) $(FORMAT_MODULES)))
 
-build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(FUZZ_TOOLS)
+build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(TOOLS_fuzz)
 	@mkdir -p $(dir $@)
 	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -D_GNU_SOURCE \
 	  -DFUZZ_FORMAT=FORMAT_$(shell echo $* | tr a-z A-Z) -Ibuild/src $(HDF5_CFLAGS) -o $@ $< $(LIB_SOURCES) $(LDLIBS)
@@ -488,7 +489,7 @@ FUZZ_MAX_LEN_vtp    := 65536
 FUZZ_MAX_LEN_npy    := 262144
 FUZZ_MAX_LEN_hdf5   := 2000000
 # Legacy VTK: the data have none; two small files, ASCII and binary, made by this program's tests.
-build/fuzz/corpus-vtk/.seeded: bin/tortuosity | $(TEST_TOOLS)
+build/fuzz/corpus-vtk/.seeded: bin/tortuosity | $(TOOLS_test)
 	@mkdir -p $(@D)
 	/usr/bin/python3 tests/vtk-fixtures.py bin/tortuosity build/fuzz/vtk-fixtures >/dev/null
 	cp build/fuzz/vtk-fixtures/legacy-*.vtk $(@D)/
@@ -514,7 +515,7 @@ build/fuzz/%.log: build/fuzz/fuzz-% build/fuzz/corpus-%/.seeded
 	@grep -E 'stat::number_of_executed_units|stat::peak_rss_mb' $@ | sed "s/^/fuzz $*: /"
 
 .PHONY: fuzz
-fuzz:
+fuzz: | $(TOOLS_build)
 	@rm -f $(foreach f,$(FUZZ_FORMATS),build/fuzz/$(f).log)
 	@$(MAKE) --no-print-directory $(foreach f,$(FUZZ_FORMATS),build/fuzz/$(f).log)
 
@@ -530,7 +531,7 @@ JOBS          ?= 2
 SHARD_DIR     ?= build/sharded
 SHARD_OPTIONS ?= -q
 .PHONY: sharded
-sharded: bin/tortuosity | $(PARALLEL_TOOLS)
+sharded: bin/tortuosity | $(TOOLS_parallel)
 	$(if $(strip $(FILES)),,$(error give the input files: make sharded FILES='...'))
 	@[[ '$(SHARDS)' =~ ^[1-9][0-9]*$$ ]] || { echo "SHARDS must be a whole number >= 1, not '$(SHARDS)'" >&2; exit 2; }
 	@mkdir -p '$(SHARD_DIR)' && rm -f '$(SHARD_DIR)'/shard-*.tsv '$(SHARD_DIR)'/all.tsv
@@ -543,10 +544,12 @@ sharded: bin/tortuosity | $(PARALLEL_TOOLS)
 
 # ---------------------------------------------------------------- lint, benchmark, clean
 .PHONY: lint
-lint: | $(BUILD_TOOLS)
+lint: build/scripts/tools-lint.sh build/scripts/shell-commands.awk | $(foreach s,$(TOOL_STAGES),$(TOOLS_$(s)))
 	@diff <(noroots paper.nw | sed 's/^<<\(.*\)>>$$/\1/' | sort) <(printf '%s\n' $(ROOTS) | sort) \
 	  && echo "lint: chunk roots match the Makefile" \
 	  || { echo "lint: roots of paper.nw ('<') differ from the Makefile ('>'); a misspelled chunk name?"; exit 1; }
+	@bash build/scripts/tools-lint.sh '$(MAKE)' build/scripts/shell-commands.awk \
+	  $(foreach s,$(TOOL_STAGES),'$(s)=$(PACKAGES_$(s))')
 
 # The full BraVa set at the paper's rates, BENCH_RUNS times on one and on two threads: the wall
 # time of each run and their median. Every run must give the bytes of the first.
@@ -583,7 +586,7 @@ bench: bin/tortuosity
 
 # Where one single-thread run of bench spends its time, stage by stage, per vessel and per output
 # sample: perf samples with their call stacks, each given to the innermost stage on its stack.
-bench-stages: bin/tortuosity build/scripts/bench-stages.awk | $(PERF_TOOLS)
+bench-stages: bin/tortuosity build/scripts/bench-stages.awk | $(TOOLS_bench)
 	@perf record -q -e cpu-clock -F 1000 --call-graph dwarf,16384 -o build/bench-stages.data \
 	  $(BENCH_RUN) --jobs 1 >build/bench.tsv
 	@perf script -i build/bench-stages.data -F ip,sym 2>/dev/null | awk -v hz=1000 \
@@ -596,7 +599,7 @@ bench-stages: bin/tortuosity build/scripts/bench-stages.awk | $(PERF_TOOLS)
 # stay flat, set by one file's bytes and one window of vessels, not by their number.
 MEMORY_SIZES := 10000 100000 1000000
 .PHONY: memory
-memory: bin/tortuosity
+memory: bin/tortuosity | $(TOOLS_bench)
 	@for n in $(MEMORY_SIZES); do \
 	  awk -v n=$$n 'BEGIN { for (i = 0; i < n; i++) printf "%d 0 0\n%d 1 0\n\n", i, i }' >build/memory-$$n.txt; \
 	  /usr/bin/time -f "memory: $$n two-point vessels: peak RSS %M KB, %e s" \
@@ -609,56 +612,41 @@ clean:
 	  build/*.log build/paper.* build/*.tsv build/*.tex
 
 # ---------------------------------------------------------------- tools
-# Debian packages that provide what each stage needs; installed on demand.
-BUILD_PACKAGES  := make gcc libc6-dev noweb libgsl-dev libexpat1-dev zlib1g-dev libssl-dev libhdf5-dev pkg-config
-REPORT_PACKAGES := gnuplot-nox r-base-core texlive-latex-base texlive-latex-recommended \
-                   texlive-fonts-recommended lmodern
-FUZZ_PACKAGES   := clang libclang-rt-14-dev
+# The Debian packages of each stage. A rule that runs a stage's programs names the stage's stamp,
+# $(TOOLS_stage), as an order-only prerequisite; the stamp installs the packages (as root; otherwise
+# it prints the one apt-get line to run) and is remade when this Makefile changes. Every stage has
+# the build stage's packages too. 'make lint' checks that each program, Python module and LaTeX
+# package a recipe or test uses comes from its stage's packages (scripts/tools-lint.sh).
+PACKAGES_build    := make gcc libc6-dev binutils git noweb libgsl-dev libexpat1-dev zlib1g-dev libssl-dev \
+                     libhdf5-dev pkg-config
+PACKAGES_report   := gnuplot-nox r-base-core texlive-latex-base texlive-latex-recommended \
+                     texlive-fonts-recommended lmodern poppler-utils
 # What the end-to-end checks compare with: VTK's own readers, h5py's files, pandas and R for the
-# provenance sidecar, man for the manual page.
-TEST_PACKAGES   := python3-vtk9 python3-pandas python3-numpy python3-h5py r-base-core man-db groff-base
-TEXMF           := /usr/share/texlive/texmf-dist/tex/latex
+# provenance sidecar, man for the manual page, GNU time for peak memory.
+PACKAGES_test     := python3-vtk9 python3-pandas python3-numpy python3-h5py r-base-core man-db groff-base time
+PACKAGES_fuzz     := clang libclang-rt-14-dev
+PACKAGES_bench    := linux-perf time
+PACKAGES_parallel := parallel
 
-# $(call ensure_packages,PACKAGES,COMMANDS,FILES): install PACKAGES unless every command and file exists.
+# $(call ensure_packages,PACKAGES): install those of PACKAGES that dpkg does not list as installed.
 define ensure_packages
-missing=; for t in $(2); do command -v $$t >/dev/null || missing="$$missing $$t"; done; \
-for f in $(3); do [ -e $$f ] || missing="$$missing $$f"; done; \
+missing=; for p in $(1); do \
+  dpkg-query -W -f='$${db:Status-Abbrev}' $$p 2>/dev/null | grep -q '^ii' || missing="$$missing $$p"; done; \
 if [ -n "$$missing" ]; then \
   if [ "$$(id -u)" = 0 ]; then \
-    echo "missing:$$missing; installing: $(1)"; \
+    echo "missing packages:$$missing; installing them"; \
     apt-get update -qq; \
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $(1) >/dev/null; \
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing >/dev/null; \
   else \
-    echo "missing:$$missing. Install with:"; \
-    echo "  sudo apt-get install $(1)"; \
+    echo "missing packages:$$missing. Install them with:"; \
+    echo "  sudo apt-get install$$missing"; \
     exit 1; \
   fi; \
 fi
 endef
 
-$(BUILD_TOOLS):
+build/.tools-%: Makefile
 	@mkdir -p build
-	@$(call ensure_packages,$(BUILD_PACKAGES),notangle cpif noroots pkg-config $(CC),/usr/include/gsl/gsl_bspline.h \
-	  /usr/include/expat.h /usr/include/zlib.h /usr/include/openssl/evp.h /usr/include/hdf5/serial/hdf5.h)
+	@$(call ensure_packages,$(PACKAGES_$*))
 	@touch $@
-
-$(REPORT_TOOLS): | $(BUILD_TOOLS)
-	@$(call ensure_packages,$(REPORT_PACKAGES),gnuplot Rscript pdflatex noweave,$(TEXMF)/booktabs/booktabs.sty)
-	@touch $@
-
-$(PARALLEL_TOOLS): | $(BUILD_TOOLS)
-	@$(call ensure_packages,parallel,parallel,)
-	@touch $@
-
-$(TEST_TOOLS): | $(BUILD_TOOLS)
-	@$(call ensure_packages,$(TEST_PACKAGES),man Rscript,/usr/lib/python3/dist-packages/vtkmodules \
-	  /usr/lib/python3/dist-packages/pandas /usr/lib/python3/dist-packages/h5py)
-	@touch $@
-
-$(PERF_TOOLS): | $(BUILD_TOOLS)
-	@$(call ensure_packages,linux-perf,perf,)
-	@touch $@
-
-$(FUZZ_TOOLS): | $(BUILD_TOOLS)
-	@$(call ensure_packages,$(FUZZ_PACKAGES),clang,)
-	@touch $@
+$(addprefix build/.tools-,$(filter-out build,$(TOOL_STAGES))): | $(TOOLS_build)

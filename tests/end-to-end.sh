@@ -26,6 +26,24 @@ if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
   }
   check "plain 'make' in a fresh clone builds bin/tortuosity" make_builds_program
 
+  # make lint must catch a program whose package a stage does not list: the report stage
+  # without poppler-utils (pdftoppm makes the figures' PNGs, pdffonts checks the PDF's fonts).
+  # The lint installs every stage's packages first, which only root may do.
+  if [ "$(id -u)" = 0 ] || ls "$REPO"/build/.tools-{build,report,test,fuzz,bench,parallel} >/dev/null 2>&1; then
+    lint_catches_missing_package() {
+      local report
+      report=$(make -s -C "$REPO" -f Makefile -pn 2>/dev/null | sed -n 's/^PACKAGES_report := //p')
+      [ -n "$report" ] && [[ " $report " == *" poppler-utils "* ]] || { echo "no poppler-utils in PACKAGES_report"; return 1; }
+      make -s -C "$REPO" lint >"$work/lint.log" 2>&1 || { tail -5 "$work/lint.log"; return 1; }
+      ! make -s -C "$REPO" lint PACKAGES_report="${report/poppler-utils/}" >"$work/lint-bad.log" 2>&1 \
+        && grep -q 'pdftoppm (program, from package poppler-utils) is used by the report stage' "$work/lint-bad.log" \
+        && grep -q 'pdffonts .* is used by the report stage' "$work/lint-bad.log" \
+        || { echo "make lint without poppler-utils:"; tail -5 "$work/lint-bad.log"; return 1; }
+    }
+    check "make lint passes, and fails naming pdftoppm and the report stage without poppler-utils" \
+      lint_catches_missing_package
+  fi
+
   # make install into a temporary prefix (and staged under DESTDIR); the manual page renders;
   # a C program built with pkg-config reads a file and measures a circle through the library.
   install_and_link() {
