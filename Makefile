@@ -295,11 +295,11 @@ build/results/profile-%.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 
 # ---------------------------------------------------------------- results -> tables
 # Small summaries, committed. R writes into a scratch folder; the files are moved into place.
-RESULT_TABLES := results/phantom-table.tex results/recon-table.tex results/soa-acct-table.tex \
+RESULT_TABLES := results/phantom-table.tex results/fit-table.tex results/recon-table.tex results/soa-acct-table.tex \
                  results/correlation.tex results/sufficient-table.tex results/data-tables.tex results/numbers.tex
 RESULT_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
                  results/phantom-sensitivity.tsv results/phantom-reading.tsv results/recon-error.tsv results/percent-shift.tsv \
-                 results/soa-acct.tsv results/correlation.tsv results/sufficient.tsv \
+                 results/fits.tsv results/soa-acct.tsv results/correlation.tsv results/correlation-influence.tsv results/sufficient.tsv \
                  results/territories.tsv results/oflynn-table.tsv results/vorobtsova-table.tsv
 SOA_POINTS    := build/results/soa-acct-points.tsv
 SUMMARY_TMP   := build/results/summary.tmp
@@ -362,6 +362,9 @@ FIG_INPUTS_territories      := results/territories.tsv
 FIG_INPUTS_data-views       := build/results/views/salkowski.tsv $(VIEWS)
 FIG_INPUTS_frame            := build/results/sinusoid.tsv
 FIG_INPUTS_aorta-profile    := build/results/density/aorta-ct-profile.tsv
+# The figures' inputs are kept: make would otherwise treat those made by a pattern rule as
+# intermediate files and delete them at the end of the run.
+.SECONDARY: $(foreach f,$(FIGURE_NAMES),$(FIG_INPUTS_$(f)))
 DATASET_NAMES := $(shell awk -F'\t' 'NR > 1 { gsub(/ /, "~", $$7); printf "%s ", $$7 }' data/manifest.tsv)
 
 # cairo 1.16 stamps the wall-clock time; replace it (same length) so figures are byte-identical.
