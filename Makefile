@@ -192,6 +192,21 @@ $(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity build/data/$$(*F)
 	@$(call dataset_files,$(*F)); echo "measure $(*F) ($(*D)): $${#files[@]} file(s)"; \
 	./bin/tortuosity metrics -q --rates $(RATE_LIST) $(OPTIONS_$(*D)) $(call read_options,$(*F)) -o $@ "$${files[@]}"
 
+# Torsion or noise: every dataset and its null twins (straight, planar; on the dataset's own
+# precision, the manifest's last column), under the paper's torsion reading and under the
+# significant one: build/results/noise/READING/TWIN/DATASET.tsv, TWIN = data, straight or planar.
+NOISE_READINGS := paper significant
+NOISE_TWINS    := data straight planar
+NOISE_RUNS     := $(foreach r,$(NOISE_READINGS),$(foreach t,$(NOISE_TWINS),$(foreach d,$(DATASETS),\
+                    build/results/noise/$(r)/$(t)/$(d).tsv)))
+noise_twin      = $(if $(filter-out data,$(1)),--null $(1) --precision '$(call manifest_value,$(2),10)')
+manifest_value  = $(shell $(call manifest_field,$(1),$(2)))
+$(NOISE_RUNS): build/results/noise/%.tsv: data/manifest.tsv bin/tortuosity build/data/$$(*F).sha256
+	@mkdir -p $(@D)
+	@$(call dataset_files,$(*F)); echo "noise: $(*F), $(subst /,: ,$(*D))"; \
+	./bin/tortuosity metrics -q --rates $(RATE_LIST) --torsion $(firstword $(subst /, ,$(*D))) \
+	  $(call noise_twin,$(lastword $(subst /, ,$(*D))),$(*F)) $(call read_options,$(*F)) -o $@ "$${files[@]}"
+
 # The smallest sufficient rate per vessel, for the datasets with radii:
 # build/results/sufficient/INTEGRATOR/DATASET.tsv.
 SUFFICIENT := $(foreach i,$(INTEGRATORS),$(foreach d,$(RADII_DATASETS),build/results/sufficient/$(i)/$(d).tsv))
@@ -295,16 +310,16 @@ build/results/profile-%.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 
 # ---------------------------------------------------------------- results -> tables
 # Small summaries, committed. R writes into a scratch folder; the files are moved into place.
-RESULT_TABLES := results/phantom-table.tex results/fit-table.tex results/recon-table.tex results/soa-acct-table.tex \
+RESULT_TABLES := results/phantom-table.tex results/fit-table.tex results/noise-table.tex results/recon-table.tex results/soa-acct-table.tex \
                  results/correlation.tex results/sufficient-table.tex results/data-tables.tex results/numbers.tex
 RESULT_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
                  results/phantom-sensitivity.tsv results/phantom-reading.tsv results/recon-error.tsv results/percent-shift.tsv \
-                 results/fits.tsv results/soa-acct.tsv results/correlation.tsv results/correlation-influence.tsv results/sufficient.tsv \
+                 results/fits.tsv results/noise.tsv results/soa-acct.tsv results/correlation.tsv results/correlation-influence.tsv results/sufficient.tsv \
                  results/territories.tsv results/oflynn-table.tsv results/vorobtsova-table.tsv
 SOA_POINTS    := build/results/soa-acct-points.tsv
 SUMMARY_TMP   := build/results/summary.tmp
 
-$(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) $(SUFFICIENT) $(DENSITY_RUNS) \
+$(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) $(NOISE_RUNS) $(SUFFICIENT) $(DENSITY_RUNS) \
     $(foreach r,$(PROFILE_RATES),build/results/profile-$(r).tsv build/results/profile-$(r)-rotation.tsv) \
     results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv build/results/phantom-truth.tsv | $(TOOLS_report)
 	@rm -rf $(SUMMARY_TMP) && mkdir -p $(SUMMARY_TMP) results
@@ -313,7 +328,7 @@ $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS
 	  shapes='$(SHAPES)' \
 	  radii='$(RADII_DATASETS)' shift_metrics='$(SHIFT_METRICS)' densities='$(DENSITIES)' \
 	  readings='$(READINGS)' paper_sigmas='$(PAPER_SIGMAS)' paper_densities='$(PAPER_DENSITIES)' \
-	  profile_rates='$(PROFILE_RATES)'
+	  profile_rates='$(PROFILE_RATES)' noise_readings='$(NOISE_READINGS)' noise_twins='$(NOISE_TWINS)'
 	@mv $(SOA_POINTS).tmp $(SOA_POINTS)
 	@mv $(addprefix $(SUMMARY_TMP)/,$(notdir $(RESULT_TABLES) $(RESULT_TSVS))) results/
 
