@@ -490,6 +490,32 @@ fi
 [ -f "${dat[0]}" ] && check "Angicart: every fit holds to its data" fits_hold angicart "${dat[@]}"
 [ -f "$vtp" ] && check "aorta: every fit holds to its data" fits_hold aorta "$vtp"
 
+# No pooled correlation at the mercy of one vessel: the twelve metrics of the correlation table at
+# 100X over the human datasets (BraVa 3DArteryVis, coronary, aorta), each Pearson correlation
+# recomputed with every vessel left out; the largest change must stay within 0.05.
+if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ] && [ -f "${npy[0]}" ] && [ -f "$vtp" ] && command -v Rscript >/dev/null; then
+  one_vessel_moves_no_correlation() {
+    { "$T" metrics -q --rates 100 --units mm "${brava[@]}"
+      "$T" metrics -q --rates 100 --split-gap 1 "${npy[@]}" | tail -n +2
+      "$T" metrics -q --rates 100 "$vtp" | tail -n +2; } >"$work/pool.tsv" || return 1
+    Rscript --vanilla -e '
+      d <- read.delim(commandArgs(TRUE)[1], na.strings = "", colClasses = c(status = "character"))
+      d <- d[d$status == "ok", ]
+      m <- c("TT", "AT", "TT_L", "AC", "TC_L", "TC", "IC_N", "TCCT_L", "ACCT", "SOA", "TCCT", "IC_kappa")
+      X <- scale(as.matrix(d[, m]), scale = FALSE); n <- nrow(X) - 1; worst <- 0
+      for (a in 1:11) for (b in (a + 1):12) {
+        x <- X[, a]; y <- X[, b]; sx <- sum(x) - x; sy <- sum(y) - y
+        loo <- (n * (sum(x * y) - x * y) - sx * sy) /
+               sqrt((n * (sum(x * x) - x * x) - sx^2) * (n * (sum(y * y) - y * y) - sy^2))
+        worst <- max(worst, abs(loo - cor(x, y)))
+      }
+      cat("largest change", worst, "\n"); quit(status = worst > 0.05)' "$work/pool.tsv" >"$work/loo.log" 2>&1 \
+      || { cat "$work/loo.log"; return 1; }
+  }
+  check "correlation table: leaving out any one vessel moves no Pearson correlation by more than 0.05" \
+    one_vessel_moves_no_correlation
+fi
+
 aorta=$DATA_DIR/vmtk-aorta/aorta-centerline.lines.csv
 if [ -f "$aorta" ]; then
   "$T" metrics -q --rates 1 "$aorta" >"$work/aorta.tsv"
