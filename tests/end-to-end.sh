@@ -180,6 +180,21 @@ check "phantom --density caption: 19 Salkowski points" bash -c "'$T' phantom --s
 check "phantom --density 16 and --points together: exit 2" bash -c "'$T' phantom --density 16 --points 9; [ \$? -eq 2 ]"
 check "phantom-study --reading cm: exit 2 with a message" bash -c \
   "'$T' phantom-study --reading cm 2>&1 | grep -q \"reading takes sd or variance\"; [ \${PIPESTATUS[0]} -eq 2 ]"
+# --uncertainty: a column M_se after every metric, filled for the sums of curvature and torsion and
+# empty for the others; the same metrics as without it; refused for a .vtp output.
+uncertainty_columns() {
+  "$T" phantom --shape helix --sigma 0.05 --count 2 >"$work/noisy-helix.txt" || return 1
+  "$T" metrics -q --rates 10 "$work/noisy-helix.txt" >"$work/plain.tsv" || return 1
+  "$T" metrics -q --rates 10 --uncertainty "$work/noisy-helix.txt" >"$work/se.tsv" || return 1
+  awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    { if ($c["AC_se"] == "" || $c["TT_se"] == "" || !($c["AC_se"] > 0) || $c["SOA_se"] != "" || $c["D_se"] != "") bad = 1 }
+    END { exit bad || NR != 3 }' "$work/se.tsv" || { head -2 "$work/se.tsv"; return 1; }
+  cmp <(cut -f"$(head -1 "$work/se.tsv" | tr '\t' '\n' | grep -vn '_se$' | cut -d: -f1 | paste -sd,)" "$work/se.tsv") \
+      "$work/plain.tsv"
+}
+check "metrics --uncertainty: M_se beside each metric, filled where defined, the metrics unchanged" uncertainty_columns
+check "metrics --uncertainty -o x.vtp: exit 2" bash -c \
+  "'$T' metrics -q --uncertainty -o '$work/se.vtp' '$work/noisy-helix.txt' 2>/dev/null; [ \$? -eq 2 ]"
 study_threads() {   # the summary of a cell does not depend on the number of threads
   "$T" phantom-study --shape salkowski --sigma 0.01 --count 60 --jobs 1 -o "$work/study-1.tsv" || return 1
   "$T" phantom-study --shape salkowski --sigma 0.01 --count 60 --jobs 3 -o "$work/study-3.tsv" || return 1
