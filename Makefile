@@ -310,11 +310,14 @@ build/results/profile-%.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 
 # ---------------------------------------------------------------- results -> tables
 # Small summaries, committed. R writes into a scratch folder; the files are moved into place.
-RESULT_TABLES := results/phantom-table.tex results/fit-table.tex results/noise-table.tex results/recon-table.tex results/soa-acct-table.tex \
-                 results/correlation.tex results/sufficient-table.tex results/data-tables.tex results/numbers.tex
+RESULT_TABLES := results/phantom-table.tex results/fit-table.tex results/noise-table.tex results/recon-table.tex \
+                 results/recon-length-table.tex results/soa-acct-table.tex results/correlation.tex \
+                 results/sufficient-table.tex results/data-tables.tex results/numbers.tex
 RESULT_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
-                 results/phantom-sensitivity.tsv results/phantom-reading.tsv results/recon-error.tsv results/percent-shift.tsv \
-                 results/fits.tsv results/noise.tsv results/soa-acct.tsv results/correlation.tsv results/correlation-influence.tsv results/sufficient.tsv \
+                 results/phantom-sensitivity.tsv results/phantom-reading.tsv results/recon-error.tsv \
+                 results/recon-length.tsv results/percent-shift.tsv results/percent-shift-null.tsv \
+                 results/fits.tsv results/noise.tsv results/soa-acct.tsv results/correlation.tsv \
+                 results/correlation-influence.tsv results/sufficient.tsv \
                  results/territories.tsv results/oflynn-table.tsv results/vorobtsova-table.tsv
 SOA_POINTS    := build/results/soa-acct-points.tsv
 SUMMARY_TMP   := build/results/summary.tmp
@@ -367,7 +370,7 @@ FIGURE_NAMES := recon-error percent-shift soa-acct profile profile-filtered terr
 FIGURES      := $(foreach f,$(FIGURE_NAMES),figures/$(f).tex figures/$(f).pdf)
 FIGURE_PNGS  := $(foreach f,$(FIGURE_NAMES),figures/$(f).png)
 FIG_INPUTS_recon-error      := results/recon-error.tsv
-FIG_INPUTS_percent-shift    := results/percent-shift.tsv
+FIG_INPUTS_percent-shift    := results/percent-shift.tsv results/percent-shift-null.tsv
 FIG_INPUTS_soa-acct         := $(SOA_POINTS)
 FIG_INPUTS_profile          := $(foreach r,$(PROFILE_RATES),build/results/profile-$(r).tsv) \
                                $(foreach r,$(PROFILE_RATES),build/results/profile-$(r)-rotation.tsv)
