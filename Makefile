@@ -444,8 +444,15 @@ paper: $(REPORT_INPUTS) | $(TOOLS_report)
 # ---------------------------------------------------------------- tests
 # Each suite ends with "[name: ]N passed, N failed"; the totals decide.
 COUNT_LINE := /^([a-z0-9-]+: )?[0-9]+ passed, [0-9]+ failed$$/
+# A locale with a decimal comma, for the test that the library reads numbers alike in any locale
+# (built here, since a machine need not have one generated; the definitions come from locales).
+TEST_LOCALE := build/locale/de_DE.UTF-8
+$(TEST_LOCALE): | $(TOOLS_test)
+	@mkdir -p $(dir $@)
+	localedef -i de_DE -f UTF-8 $@
+
 .PHONY: check
-check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh | $(TOOLS_test)
+check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh $(TEST_LOCALE) | $(TOOLS_test)
 	@echo "== unit tests (paper.nw)"
 	@./build/unit-tests | tee build/unit-tests.log
 	@echo "== end-to-end checks (tests/)"
@@ -473,7 +480,7 @@ build/sanitize/tortuosity: build/sanitize/tortuosity.o $(SAN_OBJ) | $(TOOLS_buil
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
 
 .PHONY: check-sanitize
-check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity bin/tortuosity | $(TOOLS_test)
+check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity bin/tortuosity $(TEST_LOCALE) | $(TOOLS_test)
 	@echo "== unit tests, sanitized"
 	@ASAN_OPTIONS=detect_leaks=1 ./build/sanitize/unit-tests | tee build/sanitize/unit-tests.log
 	@echo "== end-to-end checks, sanitized"
@@ -644,7 +651,8 @@ PACKAGES_report   := gnuplot-nox r-base-core texlive-latex-base texlive-latex-re
                      texlive-fonts-recommended lmodern poppler-utils
 # What the end-to-end checks compare with: VTK's own readers, h5py's files, pandas and R for the
 # provenance sidecar, man for the manual page, GNU time for peak memory.
-PACKAGES_test     := python3-vtk9 python3-pandas python3-numpy python3-h5py r-base-core man-db groff-base time
+PACKAGES_test     := python3-vtk9 python3-pandas python3-numpy python3-h5py r-base-core man-db groff-base time \
+                     locales strace
 PACKAGES_fuzz     := clang libclang-rt-14-dev
 PACKAGES_bench    := linux-perf time
 PACKAGES_parallel := parallel

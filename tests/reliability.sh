@@ -179,30 +179,6 @@ check "-o FILE with a directory at FILE.provenance.tsv: exit 2 at once, nothing 
 check "-o FILE with a FIFO at FILE.provenance.tsv: exit 2 at once (no wait for a reader), nothing written" \
   provenance_place_refused fifo
 
-planted_symlinks() {
-  local dir=$work/p pid last i
-  mkdir "$dir"; printf 'precious\n' >"$work/victim"
-  local pids=()
-  for ((pid = $$; pid <= $$ + 400; pid++)); do pids+=("$pid"); done
-  if read -r last </proc/sys/kernel/ns_last_pid 2>/dev/null; then   # a builtin: no process started
-    for ((pid = last + 1; pid <= last + 400; pid++)); do pids+=("$pid"); done
-  fi
-  # one process plants them all, so the PIDs the program gets next are still in the range
-  if command -v perl >/dev/null; then
-    perl -e '$v = shift; $d = shift; symlink($v, "$d/out.tsv.tmp.$_") for @ARGV' "$work/victim" "$dir" "${pids[@]}"
-  else
-    for pid in "${pids[@]}"; do ln -sf "$work/victim" "$dir/out.tsv.tmp.$pid"; done
-  fi
-  [ -L "$dir/out.tsv.tmp.$$" ] || { echo "could not plant the symlinks"; return 1; }
-  for i in 1 2 3; do
-    run "$T" metrics -q --rates 1 -o "$dir/out.tsv" "$work/h3.txt"
-    printf 'precious\n' | cmp -s - "$work/victim" || { echo "run $i wrote through a planted symlink: victim now"; head -3 "$work/victim"; return 1; }
-    expect_rc 0 || return 1
-    [ -f "$dir/out.tsv" ] && [ ! -L "$dir/out.tsv" ] || { echo "out.tsv is not a regular file:"; ls -l "$dir/out.tsv"; return 1; }
-    same_bytes "$work/h3.tsv" "$dir/out.tsv" || return 1
-  done
-}
-check "-o with planted symlinks out.tsv.tmp.PID -> victim: victim intact, out.tsv a regular file with the result" planted_symlinks
 
 killed_run_leaves_nothing() {   # killed_run_leaves_nothing SIGNAL
   local sig=$1 dir=$work/k-$1 pid status
@@ -539,6 +515,277 @@ stdin_is_output() {
   cmp -s "$work/si/in.txt" "$work/si/copy.txt" || { echo "the input was changed"; return 1; }
 }
 check "- as input with -o naming the file on standard input: exit 2, input unchanged" stdin_is_output
+
+# ---------------------------------------------------------------- 7. the third adversarial pass
+# Each check below failed on the program before its fix (issue: "Nothing lost, nothing misread").
+PYTHON=${PYTHON:-/usr/bin/python3}     # Debian's, with numpy and h5py (the test stage's packages)
+
+sidecar_is_input() {    # sidecar_is_input: FILE.provenance.tsv is an input, as a copy or through a link
+  local dir=$work/sc; mkdir -p "$dir"
+  cp "$work/h3.txt" "$dir/out.tsv.provenance.tsv"; cp "$work/h3.txt" "$dir/copy.txt"
+  refused 2 "$T" metrics -q -o "$dir/out.tsv" "$dir/out.tsv.provenance.tsv" --format text || return 1
+  cmp -s "$dir/out.tsv.provenance.tsv" "$dir/copy.txt" || { echo "the input was overwritten"; return 1; }
+  [ ! -e "$dir/out.tsv" ] || { echo "out.tsv written"; return 1; }
+  cp "$work/h3.txt" "$dir/data.txt"; ln -s data.txt "$dir/r.tsv.provenance.tsv"
+  refused 2 "$T" metrics -q -o "$dir/r.tsv" "$dir/data.txt" || return 1
+  cmp -s "$dir/data.txt" "$dir/copy.txt" || { echo "the input behind the link was overwritten"; return 1; }
+  [ -z "$(ls -A "$dir" | grep tortuosity)" ] || { echo "temporary files left"; ls -A "$dir"; return 1; }
+}
+check "a provenance file that is an input (a copy, or a link to one): exit 2, the input intact" sidecar_is_input
+
+failed_sidecar_keeps_result() {   # the sidecar cannot be written (ulimit -f): the old result and sidecar stay
+  local dir=$work/fs long; mkdir -p "$dir/in"; long=$(printf 'n%.0s' {1..150})
+  for i in $(seq 30); do cp "$work/h3.txt" "$dir/in/$long$i.txt"; done
+  "$T" metrics -q --rates 1 -o "$dir/r.tsv" "$work/h3.txt" || return 1
+  cp "$dir/r.tsv" "$dir/r.old"; cp "$dir/r.tsv.provenance.tsv" "$dir/p.old"
+  (ulimit -f 1; exec "$T" metrics -q --rates 1 --shard 1/1000000 -o "$dir/r.tsv" "$dir"/in/*.txt) \
+    >"$work/stdout" 2>"$work/stderr"; rc=$?
+  expect_rc 1 && has_message || return 1
+  cmp -s "$dir/r.tsv" "$dir/r.old" || { echo "the result was replaced"; return 1; }
+  cmp -s "$dir/r.tsv.provenance.tsv" "$dir/p.old" || { echo "the provenance was replaced"; return 1; }
+  [ -z "$(ls -A "$dir" | grep tortuosity)" ] || { echo "temporary files left"; ls -A "$dir"; return 1; }
+}
+check "the provenance cannot be written (ulimit -f 1, 30 long names): exit 1, old result and provenance kept" \
+  failed_sidecar_keeps_result
+
+sidecar_into_read_only() {    # as an unprivileged user: the sidecar links into a directory it cannot write
+  local dir ro; dir=$(mktemp -d /tmp/tortuosity-ro.XXXXXX); ro=$dir/ro
+  mkdir "$ro"; chmod 755 "$dir"; cp "$work/h3.txt" "$dir/h3.txt"; ln -s ro/p.tsv "$dir/r.tsv.provenance.tsv"
+  chmod 555 "$ro"
+  local as=(); [ "$(id -u)" = 0 ] && { chown -R nobody "$dir"; chown root "$ro"; as=(setpriv --reuid=nobody --regid=nogroup --clear-groups); }
+  "${as[@]}" "$T" metrics -q --rates 1 -o "$dir/r.tsv" "$dir/h3.txt" >"$work/stdout" 2>"$work/stderr"; rc=$?
+  local left; left=$(ls -A "$dir")
+  chmod -R u+w "$dir"; rm -rf "$dir"
+  expect_rc 2 && has_message || return 1
+  [ "$left" = "$(printf 'h3.txt\nr.tsv.provenance.tsv\nro')" ] || { echo "left behind: $left"; return 1; }
+}
+if [ "$(id -u)" != 0 ] || command -v setpriv >/dev/null; then
+  check "a provenance link into a read-only directory (unprivileged): exit 2 before computing, nothing written" \
+    sidecar_into_read_only
+else
+  skip "a provenance link into a read-only directory" "root without setpriv"
+fi
+
+concurrent_runs() {     # two runs write one -o at once: result and provenance always from the same run
+  local dir=$work/cc i bad=0; mkdir -p "$dir"
+  for i in $(seq 20); do
+    "$T" metrics -q --rates 1,2 -o "$dir/c.tsv" "$work/h3.txt" & "$T" metrics -q --rates 1,2 -o "$dir/c.tsv" "$work/h50.txt" &
+    wait
+    local rows input; rows=$(wc -l <"$dir/c.tsv"); input=$(awk -F'\t' '$1 == "input" { print $2 }' "$dir/c.tsv.provenance.tsv")
+    case "$rows:$input" in 7:*/h3.txt|101:*/h50.txt) ;; *) bad=$((bad + 1)) ;; esac
+  done
+  [ $bad = 0 ] || { echo "$bad of 20 trials: the result of one run, the provenance of the other"; return 1; }
+}
+check "two runs writing one -o at once, 20 trials: result and provenance of the same run" concurrent_runs
+
+tmp_files_exclusive() {   # every file made beside -o is created with O_EXCL (a planted link is never followed)
+  command -v strace >/dev/null || { echo "strace is not installed (test stage)"; return 1; }
+  local dir=$work/ex; mkdir -p "$dir"
+  strace -f -qq -e trace=openat -o "$work/trace" "$T" metrics -q --rates 1 -o "$dir/out.tsv" "$work/h3.txt" || return 1
+  local made; made=$(grep -c '\.tortuosity-' "$work/trace")
+  [ "$made" -ge 2 ] || { echo "$made temporary files seen, expected the result's and its provenance's"; return 1; }
+  ! grep '\.tortuosity-' "$work/trace" | grep -v 'O_EXCL' | grep -q . \
+    || { echo "a temporary file opened without O_EXCL:"; grep '\.tortuosity-' "$work/trace" | grep -v O_EXCL; return 1; }
+}
+check "the temporary files beside -o (result and provenance) are created with O_CREAT|O_EXCL" tmp_files_exclusive
+
+{ echo vessel,x,y,z; csv_rows 1 1 4; awk 'NF && ++n >= 5 { print "1," $1 + 50 "," $2 "," $3 }' "$work/pts8.txt"
+  csv_rows 2 1 4; awk 'NF && ++n >= 5 { print "2," $1 + 50 "," $2 "," $3 }' "$work/pts8.txt"; } >"$work/ids12.csv"
+sed 's/^2,/3,/' "$work/ids12.csv" >"$work/ids13.csv"
+split_keeps_ids() {   # split_keeps_ids FILE WANT
+  run "$T" metrics -q --rates 1 --split-gap 20 "$1"
+  expect_rc 0 || return 1
+  local got; got=$(awk -F'\t' 'NR > 1 { printf "%s%s", sep, $2; sep = " " }' "$work/stdout")
+  [ "$got" = "$2" ] || { echo "labels '$got', expected '$2'"; return 1; }
+}
+check "--split-gap on a CSV with vessels 1 and 2: labels 1:1 1:2 2:1 2:2" split_keeps_ids "$work/ids12.csv" "1:1 1:2 2:1 2:2"
+check "--split-gap on a CSV with vessels 1 and 3: labels 1:1 1:2 3:1 3:2" split_keeps_ids "$work/ids13.csv" "1:1 1:2 3:1 3:2"
+
+long230=$(printf 'q%.0s' {1..240})
+{ echo vessel,x,y,z; for g in "${long230}A" "${long230}B"; do
+    csv_rows "$g" 1 4; awk -v g="$g" 'NF && ++n >= 5 { print g "," $1 + 50 "," $2 "," $3 }' "$work/pts8.txt"; done; } >"$work/long-ids.csv"
+long_labels_distinct() {
+  run "$T" metrics -q --rates 1 --split-gap 20 "$work/long-ids.csv"
+  expect_rc 0 || return 1
+  [ "$(awk -F'\t' 'NR > 1 { print $2 }' "$work/stdout" | sort -u | wc -l)" = 4 ] \
+    || { echo "labels collide:"; awk -F'\t' 'NR > 1 { print substr($2, 230) }' "$work/stdout"; return 1; }
+}
+check "--split-gap on two 241-byte ids that differ at the end: four distinct labels" long_labels_distinct
+
+{ echo x,y,z,vessel_diameter; awk 'NF { print $1 "," $2 "," $3 ",2" }' "$work/pts8.txt"; } >"$work/diam.csv"
+diameter_advice() {   # the warning's advice, followed, gives radius 1 from diameter 2
+  run "$T" metrics --rates 1 "$work/diam.csv"
+  local advice; advice=$(grep -o -- '--columns [^ ]*' "$work/stderr")
+  [ -n "$advice" ] || { echo "no advice in the warning:"; head -3 "$work/stderr"; return 1; }
+  run "$T" metrics -q --rates 1 $advice "$work/diam.csv"
+  expect_rc 0 || return 1
+  [ "$(awk -F'\t' 'NR == 2 { print $24 }' "$work/stdout")" = 1 ] || { echo "r_min $(awk -F'\t' 'NR == 2 { print $24 }' "$work/stdout"), expected 1 (half of 2)"; return 1; }
+}
+check "CSV column vessel_diameter: following the warning's advice gives r_min 1 for diameter 2" diameter_advice
+vtp_with() {    # vtp_with ARRAY-NAME FILE: 8 points of pts8.txt, one line, one point array of value 2
+  { printf '<?xml version="1.0"?>\n<VTKFile type="PolyData" version="1.0"><PolyData>\n'
+    printf '<Piece NumberOfPoints="8" NumberOfLines="1"><Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">\n'
+    awk 'NF { print $1, $2, $3 }' "$work/pts8.txt"
+    printf '</DataArray></Points><PointData><DataArray type="Float64" Name="%s" format="ascii">2 2 2 2 2 2 2 2</DataArray></PointData>\n' "$1"
+    printf '<Lines><DataArray type="Int64" Name="connectivity" format="ascii">0 1 2 3 4 5 6 7</DataArray>\n'
+    printf '<DataArray type="Int64" Name="offsets" format="ascii">8</DataArray></Lines></Piece></PolyData></VTKFile>\n'; } >"$2"
+}
+vtp_with Diameter "$work/diameter.vtp"; vtp_with vessel_diameter "$work/vdiam.vtp"
+r_min_is() {    # r_min_is WANT FILE OPTIONS...
+  local want=$1 file=$2; shift 2
+  run "$T" metrics -q --rates 1 "$@" "$file"
+  expect_rc 0 || return 1
+  [ "$(awk -F'\t' 'NR == 2 { print $24 }' "$work/stdout")" = "$want" ] || { echo "r_min '$(awk -F'\t' 'NR == 2 { print $24 }' "$work/stdout")', expected $want"; return 1; }
+}
+check "VTK point array Diameter (2): read as radius 1" r_min_is 1 "$work/diameter.vtp"
+vtk_diameter_advice() {
+  run "$T" metrics --rates 1 "$work/vdiam.vtp"
+  local advice; advice=$(grep -o -- '--radius-array [^ ]*' "$work/stderr")
+  [ -n "$advice" ] || { echo "no advice in the warning:"; head -3 "$work/stderr"; return 1; }
+  r_min_is 1 "$work/vdiam.vtp" $advice
+}
+check "VTK array vessel_diameter: following the warning's advice gives r_min 1 for diameter 2" vtk_diameter_advice
+
+{ echo a,b,c; awk 'NF { print $1 "," $2 "," $3 }' "$work/pts8.txt"; } >"$work/abc.csv"
+check "--columns a,a,c (one column for x and y): exit 2" refused 2 "$T" metrics -q --columns a,a,c "$work/abc.csv"
+check "--columns a,b,c,a (x is also the radius): exit 2" refused 2 "$T" metrics -q --columns a,b,c,a "$work/abc.csv"
+
+h5_fixture() {  # h5_fixture KIND FILE: a section morphology with one defect
+  "$PYTHON" - "$1" "$2" <<'PY'
+import sys, h5py, numpy as np
+kind, path = sys.argv[1], sys.argv[2]
+pts = np.array([[i, 0.1 * i * i, 0.01 * i ** 3, 1.0] for i in range(10)], dtype=np.float64)
+with h5py.File(path, "w") as f:
+    if kind == "partial":
+        d = f.create_dataset("points", shape=(10, 4), dtype="f8", chunks=(2, 4))
+        d[0:4] = pts[0:4]                          # rows 4-9 never written
+    else:
+        f.create_dataset("points", data=pts)
+    f.create_dataset("structure", data=np.array([[0, -1]], dtype=np.int32))
+    f.create_dataset("connectivity", data=np.zeros((0, 2), dtype=np.int32))
+if kind == "precision0":                           # the structure's int32 type message, its precision set to 0
+    b = bytearray(open(path, "rb").read())
+    sig = bytes([0x10, 0x08, 0, 0, 4, 0, 0, 0, 0, 0, 32, 0])
+    k = b.find(sig)
+    assert k >= 0, "no int32 type message found"
+    b[k + 10:k + 12] = b"\0\0"
+    open(path, "wb").write(bytes(b))
+PY
+}
+h5_refused() {  # h5_refused KIND WORDS: exit 2 and the message says WORDS
+  h5_fixture "$1" "$work/$1.h5" || { echo "could not make the fixture"; return 1; }
+  refused 2 "$T" metrics -q --rates 1 "$work/$1.h5" || return 1
+  grep -q "$2" "$work/stderr" || { echo "message does not say '$2':"; head -3 "$work/stderr"; return 1; }
+}
+check "HDF5 /points chunked with only some chunks written: exit 2, 'written only in part'" h5_refused partial "written only in part"
+check "HDF5 integer type of precision 0: exit 2 (no crash), 'bits'" h5_refused precision0 "bits"
+
+hdf5_little_memory() {  # every limit from 40 to 66 MB: exit 1 with a message (never a crash, never exit 2)
+  h5_fixture plain "$work/plain.h5" || return 1
+  local v
+  for v in $(seq 40000 2000 66000); do
+    (ulimit -v $v; exec "$T" metrics -q --rates 1 "$work/plain.h5") >"$work/stdout" 2>"$work/stderr"; rc=$?
+    case $rc in
+      0) ;;
+      1) has_message || { echo "limit $v KB"; return 1; } ;;
+      *) echo "limit $v KB: exit $rc"; head -2 "$work/stderr"; return 1 ;;
+    esac
+  done
+}
+if grep -q __asan_init "$T" 2>/dev/null; then
+  skip "HDF5 under ulimit -v 40-66 MB: exit 0 or 1 with a message" "AddressSanitizer build"
+else
+  check "HDF5 under ulimit -v 40-66 MB: exit 0 or 1 with a message, never a crash" hdf5_little_memory
+fi
+
+printf 'x;y;z\n0;0;0\n1,5;0;0\n2;1.234;0\n3;2;0\n4;3;1\n5;5;1\n' >"$work/marks.csv"
+check "a semicolon CSV with 1,5 and 1.234: exit 2 (mixed decimal marks)" refused 2 "$T" metrics -q "$work/marks.csv"
+
+closed_stdout() { "$T" metrics -q --rates 1 "$work/h3.txt" >&- 2>"$work/stderr"; rc=$?; [ $rc != 0 ] && has_message; }
+check "metrics with standard output closed (>&-): not 0, a message" closed_stdout
+
+"$T" phantom --shape helix --count 200 --points 200 >"$work/big.txt"
+fsize_stdout() {    # fsize_stdout SINK: under ulimit -f 10, exit 0 into a pipe; into a file, 1 with a message
+  local sink=$1
+  case $sink in
+    pipe) bash -c "ulimit -f 10; \"$T\" metrics -q --rates 1 \"$work/big.txt\" | wc -c" >"$work/stdout" 2>"$work/stderr"; rc=$?
+          expect_rc 0 || return 1; [ "$(cat "$work/stdout")" -gt 20000 ] || { echo "only $(cat "$work/stdout") bytes"; return 1; } ;;
+    null) bash -c "ulimit -f 10; exec \"$T\" metrics -q --rates 1 \"$work/big.txt\" >/dev/null" 2>"$work/stderr"; rc=$?
+          expect_rc 0 ;;
+    file) bash -c "ulimit -f 10; exec \"$T\" metrics -q --rates 1 \"$work/big.txt\" >\"$work/fs.out\"" 2>"$work/stderr"; rc=$?
+          expect_rc 1 && has_message ;;
+    phantom) bash -c "ulimit -f 10; exec \"$T\" phantom --points 100000 >\"$work/fs.out\"" 2>"$work/stderr"; rc=$?
+          expect_rc 1 && has_message ;;
+  esac
+}
+for sink in pipe null file phantom; do
+  check "ulimit -f 10 with standard output a $sink: no SIGXFSZ (exit 0 where the sink has no limit, else 1)" fsize_stdout $sink
+done
+
+if [ -c /dev/full ]; then
+  check "--list-metrics >/dev/full: exit 1, message" write_error "$T" metrics --list-metrics
+  check "metrics --help >/dev/full: exit 1, message" write_error "$T" metrics --help
+  check "--help >/dev/full: exit 1, message" write_error "$T" --help
+fi
+
+messages_say() {    # messages_say WORDS COMMAND...: exit 2 and the message has WORDS
+  local words=$1; shift
+  refused 2 "$@" || return 1
+  grep -qF -- "$words" "$work/stderr" || { echo "message does not say '$words':"; head -3 "$work/stderr"; return 1; }
+}
+{ echo x,y,z; awk 'NF { print $1 "," $2 "," $3 }' "$work/pts8.txt"; } >"$work/plain.csv"
+iconv -f UTF-8 -t UTF-16 "$work/plain.csv" >"$work/utf16.csv"
+tr '\n' '\r' <"$work/plain.csv" >"$work/cr.csv"
+check "a UTF-16 CSV: exit 2, 'UTF-16'" messages_say "UTF-16" "$T" metrics -q "$work/utf16.csv"
+check "a CSV with CR-only line ends: exit 2, 'carriage return'" messages_say "carriage return" "$T" metrics -q "$work/cr.csv"
+mkdir -p "$work/adir"
+check "a directory as input: exit 2, 'is a directory'" messages_say "is a directory" "$T" metrics -q "$work/adir"
+"$PYTHON" -c "
+import sys; h = b\"{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }\x00\"; h += b' ' * (63 - len(h) % 64) + b'\n'
+sys.stdout.buffer.write(b'\x93NUMPY\x01\x00' + len(h).to_bytes(2, 'little') + h + bytes(48))" >"$work/nul.npy"
+npy_escape_once() {
+  refused 2 "$T" metrics -q "$work/nul.npy" || return 1
+  ! grep -qF '\\' "$work/stderr" || { echo "a doubled backslash:"; head -2 "$work/stderr"; return 1; }
+}
+check "an npy header with a NUL after '}': exit 2, the byte shown once (no doubled backslash)" npy_escape_once
+{ printf '<?xml version="1.0"?>\n<VTKFile type="PolyData"><PolyData><Piece NumberOfPoints="2" NumberOfLines="1">\n'
+  printf '<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 1 1</DataArray></Points>\n'
+  printf '<Lines><DataArray type="UInt64" Name="connectivity" format="ascii">0 18446744073709551615</DataArray>\n'
+  printf '<DataArray type="UInt64" Name="offsets" format="ascii">2</DataArray></Lines></Piece></PolyData></VTKFile>\n'; } >"$work/u64.vtp"
+check "ASCII .vtp connectivity 18446744073709551615: exit 2, 'too large for an index'" \
+  messages_say "too large for an index" "$T" metrics -q "$work/u64.vtp"
+{ printf '# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 3 double\n0 0 0 1 1 0 2 3 1\nLINES 1 4\n3 0 1 2\n'
+  printf '\0\0\0\0\n'; } >"$work/nul.vtk"
+check ".vtk with NUL bytes after the data: exit 2, the bytes shown (<00>)" messages_say "<00>" "$T" metrics -q "$work/nul.vtk"
+printf '0 0 0\n0x10 1 0\n2 3 0\n3 4 1\n4 6 1\n' >"$work/hex.txt"
+{ echo x,y,z; echo 0,0,0; echo 0x10,1,0; echo 2,3,0; echo 3,4,1; echo 4,6,1; } >"$work/hex.csv"
+sed 's/1 1 1</0xAp0 1 1</' "$work/u64.vtp" | sed 's/18446744073709551615/1/; s/UInt64/Int64/g' >"$work/hex.vtp"
+check "0x10 in a text coordinate: exit 2" refused 2 "$T" metrics -q "$work/hex.txt"
+check "0x10 in a CSV coordinate: exit 2" refused 2 "$T" metrics -q "$work/hex.csv"
+check "0xAp0 in an ASCII .vtp coordinate: exit 2" refused 2 "$T" metrics -q "$work/hex.vtp"
+not_applied() {     # not_applied WORDS OPTION... -- FILE: a warning names the option that does not apply
+  local words=$1; shift
+  run "$T" metrics --rates 1 "$@"
+  expect_rc 0 || return 1
+  grep -qF -- "$words" "$work/stderr" || { echo "no warning naming $words:"; head -3 "$work/stderr"; return 1; }
+}
+check "--columns on a text file: a warning" not_applied "--columns" --columns x,y,z "$work/h3.txt"
+check "--radius-array on a CSV file: a warning" not_applied "--radius-array" --radius-array R "$work/plain.csv"
+check "--voxel on a text file: a warning" not_applied "--voxel" --voxel 1x1x1 "$work/h3.txt"
+check "sufficient -o s.vtp (writes a table): exit 2" refused 2 "$T" sufficient -q -o "$work/s.vtp" "$work/h3.txt"
+check "phantom -o p.vtk (writes text): exit 2" refused 2 "$T" phantom -o "$work/p.vtk"
+check "phantom --count 2000000: exit 2, the message gives the bound 1000000" \
+  messages_say "1000000" "$T" phantom --count 2000000
+"$PYTHON" -c "
+import numpy as np, sys
+a = np.array([[i * 0.25, 0, 0] for i in range(200)] + [[77 + 50 + i * 0.25, 1, 0] for i in range(200)])
+np.save(sys.argv[1], a)" "$work/jump.npy"
+jump_warned() {
+  run "$T" metrics --rates 1 "$work/jump.npy"
+  expect_rc 0 || return 1
+  grep -qF -- "--split-gap" "$work/stderr" || { echo "no warning naming --split-gap:"; head -3 "$work/stderr"; return 1; }
+}
+check "an .npy with a 77 mm jump (300 times its steps) and no --split-gap: a warning naming --split-gap" jump_warned
 
 echo "reliability: $passed passed, $failed failed"
 exit 0
