@@ -516,7 +516,7 @@ stdin_is_output() {
 }
 check "- as input with -o naming the file on standard input: exit 2, input unchanged" stdin_is_output
 
-# ---------------------------------------------------------------- 7. the third adversarial pass
+# ---------------------------------------------------------------- 8. the third adversarial pass
 # Each check below failed on the program before its fix (issue: "Nothing lost, nothing misread").
 PYTHON=${PYTHON:-/usr/bin/python3}     # Debian's, with numpy and h5py (the test stage's packages)
 
