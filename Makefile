@@ -61,7 +61,7 @@ SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp sc
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
            scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk
-ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1
+ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
 build/src/%: paper.nw | $(TOOLS_build)
@@ -116,8 +116,9 @@ MAN_DATE = $(shell date -u -d @$(SOURCE_DATE_EPOCH) +%Y-%m-%d)
 build/tortuosity.1: paper.nw bin/tortuosity build/scripts/man-commands.awk | $(TOOLS_build)
 	{ notangle -R'man/tortuosity.1' paper.nw | sed -e 's|@DATE@|$(MAN_DATE)|' -e 's|@VERSION@|$(VERSION)|'; \
 	  { echo "== main"; ./bin/tortuosity --help; \
-	    for c in metrics profile sufficient phantom phantom-study; do echo "== $$c"; ./bin/tortuosity $$c --help; done; } \
-	  | awk -f build/scripts/man-commands.awk; } >$@.tmp && mv $@.tmp $@
+	    for c in metrics profile sufficient phantom phantom-study; do echo "== $$c"; ./bin/tortuosity $$c --help; done; \
+	    echo "== metric-list"; ./bin/tortuosity metrics --list-metrics; } \
+	  | awk -f build/scripts/man-commands.awk; notangle -R'man/tortuosity.1.end' paper.nw; } >$@.tmp && mv $@.tmp $@
 
 .PHONY: install uninstall
 INSTALLED := bin/tortuosity lib/libtortuosity.a include/tortuosity.h lib/pkgconfig/tortuosity.pc \
@@ -310,7 +311,7 @@ build/results/profile-%.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 
 # ---------------------------------------------------------------- results -> tables
 # Small summaries, committed. R writes into a scratch folder; the files are moved into place.
-RESULT_TABLES := results/phantom-table.tex results/fit-table.tex results/noise-table.tex results/recon-table.tex \
+RESULT_TABLES := results/phantom-table.tex results/phantom-paper-tables.tex results/fit-table.tex results/noise-table.tex results/recon-table.tex \
                  results/recon-length-table.tex results/soa-acct-table.tex results/correlation.tex \
                  results/sufficient-table.tex results/data-tables.tex results/numbers.tex
 RESULT_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
@@ -339,17 +340,18 @@ $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS
 # concordance chunk; 'make reproduce' checks that every file a row names exists.
 results/concordance.tsv: paper.nw | $(TOOLS_build)
 	@mkdir -p results
-	{ printf 'item\tlabel\tstatus\tfile\tnote\n'; notangle -R'concordance' $< \
+	{ printf 'item\tlabel\tstatus\tfile\there\tnote\n'; notangle -R'concordance' $< \
 	  | awk '/^ / { sub(/^ +/, " "); row = row $$0; next } row != "" { print row } { row = $$0 } END { print row }' \
 	  | sed 's/ *| */\t/g'; } >$@.tmp && mv $@.tmp $@
 check_concordance = awk -F'\t' 'NR > 1 && $$4 != "-" && system("test -f " $$4) { print "$<: " $$1 ": no file " $$4; \
                       bad = 1 } END { exit bad }' $< >&2
 build/concordance.tex: results/concordance.tsv
-	awk -F'\t' 'NR == 1 { print "\\begin{center}\\small\\begin{tabular}{lllp{7.2cm}}\\toprule"; \
-	                      print "paper & status & file & note\\\\\\midrule"; next } \
-	   { gsub(/_/, "\\_", $$4); sub(/-reproducible/, " reproducible", $$3); \
-	     printf "%s & %s & \\texttt{%s} & %s\\\\\n", $$1, $$3, $$4, $$5 } \
-	   END { print "\\bottomrule\\end{tabular}\\end{center}" }' $< >$@.tmp && mv $@.tmp $@
+	awk -F'\t' 'NR == 1 { print "{\\small\\begin{longtable}{@{}llp{2.1cm}p{10.4cm}@{}}\\toprule"; \
+	                      print "paper & here & status & what agrees and what does not\\\\\\midrule\\endhead"; next } \
+	   { sub(/-reproducible/, " reproducible", $$3); \
+	     here = $$5 == "-" ? "--" : sprintf("%s~\\ref{%s}, p.~\\pageref{%s}", $$5 ~ /^fig:/ ? "Fig." : "Table", $$5, $$5); \
+	     printf "%s & %s & %s & %s\\\\\n", $$1, here, $$3, $$6 } \
+	   END { print "\\bottomrule\\end{longtable}}" }' $< >$@.tmp && mv $@.tmp $@
 
 # The report's table of metrics and list of interfaces come from the code itself.
 build/metrics-table.tex: bin/tortuosity

@@ -55,7 +55,11 @@ if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
     "$prefix/bin/tortuosity" --version | grep -qE '^tortuosity [0-9]+\.[0-9]+\.[0-9]+ \(commit [^)]+\)$' \
       || { echo "--version"; return 1; }
     MANWIDTH=80 man -l "$prefix/share/man/man1/tortuosity.1" 2>/dev/null >"$work/man.txt" || { echo "man -l"; return 1; }
-    grep -q 'EXIT STATUS' "$work/man.txt" && grep -q -- '--split-gap' "$work/man.txt" || { echo "man page text"; return 1; }
+    for section in EXAMPLES METRICS 'EXIT STATUS' 'SEE ALSO' CITING; do
+      grep -q "^$section" "$work/man.txt" || { echo "man page: no $section section"; return 1; }
+    done
+    grep -q -- '--split-gap' "$work/man.txt" && grep -q 'vmtkcenterlinegeometry' "$work/man.txt" \
+      && grep -q 'TCCT_L' "$work/man.txt" || { echo "man page text"; return 1; }
     cat >"$work/use-library.c" <<'PROGRAM'
 #include <math.h>
 #include <stdio.h>
@@ -88,7 +92,7 @@ PROGRAM
     ! nm -g --defined-only "$prefix/lib/libtortuosity.a" | awk 'NF == 3 && $3 !~ /^tort_/' | grep -q . \
       || { echo "names other than tort_ are global in the library"; return 1; }
   }
-  check "make install: program, man -l, and a C program linked with pkg-config measures a circle" install_and_link
+  check "make install: program, man -l (EXAMPLES, METRICS, SEE ALSO), and a C program linked with pkg-config measures a circle" install_and_link
 
   # A data file that is not the one the manifest names stops make before any result, with a message.
   if [ -f "$DATA_DIR/vmtk-aorta/aorta-centerline.vtp" ]; then
@@ -207,9 +211,10 @@ check "phantom-study: 60 realisations in every row, the same with 1 and 3 thread
 concordance_complete() {
   local root; root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
   awk -F'\t' -v root="$root" 'NR == 1 { next } { items[$1] = 1; n++
-      if ($3 !~ /^(reproduced|stand-in|not-reproducible)$/) { print "bad status: " $0; bad = 1 }
-      if ($3 == "not-reproducible" && $5 == "") { print "no reason: " $1; bad = 1 }
-      if ($3 != "not-reproducible" && system("test -f \"" root "/" $4 "\"")) { print "no file: " $4; bad = 1 } }
+      if ($3 !~ /^(reproduced|differs|stand-in|not-reproducible)$/) { print "bad status: " $0; bad = 1 }
+      if ($3 == "not-reproducible" && $6 == "") { print "no reason: " $1; bad = 1 }
+      if ($3 != "not-reproducible" && system("test -f \"" root "/" $4 "\"")) { print "no file: " $4; bad = 1 }
+      if ($3 != "not-reproducible" && $5 !~ /^(fig|tab):/) { print "no counterpart in the report: " $1; bad = 1 } }
     END { for (k = 1; k <= 7; k++) if (!(("Figure " k) in items)) { print "missing Figure " k; bad = 1 }
           for (k = 1; k <= 2; k++) if (!(("Table " k) in items)) { print "missing Table " k; bad = 1 }
           for (k = 1; k <= 3; k++) if (!(("Figure S" k) in items)) { print "missing Figure S" k; bad = 1 }
