@@ -346,12 +346,15 @@ results/concordance.tsv: paper.nw | $(TOOLS_build)
 check_concordance = awk -F'\t' 'NR > 1 && $$4 != "-" && system("test -f " $$4) { print "$<: " $$1 ": no file " $$4; \
                       bad = 1 } END { exit bad }' $< >&2
 build/concordance.tex: results/concordance.tsv
-	awk -F'\t' 'NR == 1 { print "{\\small\\begin{longtable}{@{}llp{2.1cm}p{10.4cm}@{}}\\toprule"; \
-	                      print "paper & here & status & what agrees and what does not\\\\\\midrule\\endhead"; next } \
-	   { sub(/-reproducible/, " reproducible", $$3); \
+	awk -F'\t' 'NR == 1 { print "{\\small\\begin{longtable}{@{}ll>{\\raggedright}p{2.1cm}>{\\raggedright\\arraybackslash}p{10.4cm}@{}}"; \
+	                      print "\\caption{The paper'\''s tables and figures (left) and their counterparts here.}\\label{tab:concordance}\\\\"; \
+	                      print "\\toprule paper & here & status & what agrees and what does not\\\\\\midrule\\endhead"; next } \
+	   { n[$$3]++; sub(/-reproducible/, " reproducible", $$3); \
 	     here = $$5 == "-" ? "--" : sprintf("%s~\\ref{%s}, p.~\\pageref{%s}", $$5 ~ /^fig:/ ? "Fig." : "Table", $$5, $$5); \
 	     printf "%s & %s & %s & %s\\\\\n", $$1, here, $$3, $$6 } \
-	   END { print "\\bottomrule\\end{longtable}}" }' $< >$@.tmp && mv $@.tmp $@
+	   END { print "\\bottomrule\\end{longtable}}"; \
+	         printf "\\noindent In all: %d reproduced, %d differ, %d stand-ins, %d not reproducible.\n", \
+	                n["reproduced"], n["differs"], n["stand-in"], n["not-reproducible"] }' $< >$@.tmp && mv $@.tmp $@
 
 # The report's table of metrics and list of interfaces come from the code itself.
 build/metrics-table.tex: bin/tortuosity
