@@ -788,5 +788,32 @@ jump_warned() {
 }
 check "an .npy with a 77 mm jump (300 times its steps) and no --split-gap: a warning naming --split-gap" jump_warned
 
+{ cat "$work/h50.txt"; printf '\n0 0 0\n1 x 0\n'; } >"$work/late-bad.txt"
+keep_going() {      # a mixed batch: the good files' vessels, as without the bad ones; each bad one named; exit 1
+  "$T" metrics -q --rates 1,2 "$work/h3.txt" "$work/h50.txt" >"$work/good-only.tsv" || return 1
+  run "$T" metrics -q --rates 1,2 --keep-going -o "$work/kg.tsv" "$work/h3.txt" "$work/bad.txt" \
+    "$work/late-bad.txt" "$work/h50.txt"
+  expect_rc 1 || return 1
+  same_bytes "$work/good-only.tsv" "$work/kg.tsv" || return 1
+  grep -qF "$work/bad.txt:2:" "$work/stderr" && grep -qF "$work/late-bad.txt:" "$work/stderr" \
+    || { echo "a bad file is not named with its line:"; head -4 "$work/stderr"; return 1; }
+  [ "$(awk -F'\t' '$1 == "input"' "$work/kg.tsv.provenance.tsv" | wc -l)" = 2 ] \
+    || { echo "the provenance does not list the two good inputs"; return 1; }
+}
+check "--keep-going on good, bad and late-bad files: the good files' rows exactly, each bad file named, exit 1" keep_going
+keep_going_shards() {   # the shards of a mixed batch join to the whole good result
+  "$T" metrics -q --rates 1 "$work/h3.txt" "$work/h50.txt" >"$work/good1.tsv" || return 1
+  local k
+  for k in 1 2 3; do
+    "$T" metrics -q --rates 1 --keep-going --shard $k/3 "$work/h3.txt" "$work/bad.txt" "$work/h50.txt" \
+      >"$work/kgs-$k.tsv" 2>/dev/null; [ $? = 1 ] || { echo "shard $k: exit $?, expected 1"; return 1; }
+  done
+  { cat "$work/kgs-1.tsv"; tail -n +2 "$work/kgs-2.tsv"; tail -n +2 "$work/kgs-3.tsv"; } >"$work/kgs.tsv"
+  same_bytes "$work/good1.tsv" "$work/kgs.tsv"
+}
+check "--keep-going --shard K/3 on a mixed batch: the three shards join to the good files' result" keep_going_shards
+check "without --keep-going one bad file still stops the batch: exit 2, no rows" \
+  refused 2 "$T" metrics -q --rates 1 "$work/h3.txt" "$work/bad.txt"
+
 echo "reliability: $passed passed, $failed failed"
 exit 0
