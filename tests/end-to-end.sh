@@ -369,6 +369,13 @@ if "$PYTHON" -c 'import vtk' 2>/dev/null; then
     vtp_roundtrip profile --rate 10 "$work/salk.txt"
   check "metrics -o .vtp: every row with samples is a cell with the row's values" \
     vtp_roundtrip metrics --rates 1,2/mm,10,raw "$work/helices.txt" "$work/salk.txt"
+  "$T" phantom --shape helix --count 3 | awk 'NF { print $0, 0.5 + 0.001 * NR; next } { print }' >"$work/radii-helices.txt"
+  vtp_vmtk() {
+    "$T" metrics -q "$work/radii-helices.txt" >"$work/rt.tsv" \
+      && "$T" metrics -q --vtk-names vmtk -o "$work/rt.vtp" "$work/radii-helices.txt" \
+      && "$PYTHON" "$(dirname "${BASH_SOURCE[0]}")/vtk-roundtrip.py" vmtk "$work/rt.vtp" "$work/rt.tsv"
+  }
+  check "metrics --vtk-names vmtk -o .vtp: VMTK's array names, a Radius array, vtkThreshold keeps one rate" vtp_vmtk
   check "36 .vtp/.vtk files in every encoding VTK writes: read as VTK reads them" \
     bash -c "'$PYTHON' '$(dirname "${BASH_SOURCE[0]}")/vtk-fixtures.py' '$T' '$work/vtk-fixtures' >'$work/vtk-fixtures.log' \
              || { tail -3 '$work/vtk-fixtures.log'; exit 1; }"

@@ -4,6 +4,7 @@ compare every array with the table the same command writes.
 
   vtk-roundtrip.py profile FILE.vtp FILE.tsv   point arrays against 'profile' columns
   vtk-roundtrip.py metrics FILE.vtp FILE.tsv   cell arrays against 'metrics' rows
+  vtk-roundtrip.py vmtk FILE.vtp FILE.tsv      --vtk-names vmtk: names, Radius, a threshold on rate
 
 The tables print 9 significant digits, the .vtp keeps doubles: numbers must agree to
 1e-8 relative, an empty field must be NaN, strings must be equal. Exit status 0 when
@@ -16,7 +17,7 @@ import vtk
 
 # Statuses whose rows have samples, hence a cell in the .vtp (pipeline.h).
 WITH_SAMPLES = {"ok", "endpoints-coincide", "all-filtered"}
-TEXT_COLUMNS = {"file", "vessel", "rate", "status"}
+TEXT_COLUMNS = {"file", "vessel", "status"}
 
 
 def read_vtp(path):
@@ -89,6 +90,14 @@ def check_metrics(poly, rows):
         if poly.GetCell(i).GetNumberOfPoints() != int(row["n"]):
             sys.exit(f"cell {i}: {poly.GetCell(i).GetNumberOfPoints()} points, the table says n = {row['n']}")
         for col, text in row.items():
+            if col == "rate":       # a number to threshold (factor, points per mm, 0 for raw) and its text
+                label = cd.GetAbstractArray("rate_label")
+                if label is None or label.GetValue(i) != text:
+                    sys.exit(f"cell {i} rate_label: table {text!r}")
+                number = 0.0 if text == "raw" else float(text.replace("/mm", ""))
+                same(repr(number), cd.GetArray("rate").GetValue(i), f"cell {i} rate")
+                checked += 1
+                continue
             a = cd.GetAbstractArray(col)
             if a is None:
                 sys.exit(f"no cell array {col}")
@@ -101,8 +110,42 @@ def check_metrics(poly, rows):
     return checked
 
 
+def check_vmtk(poly, rows):
+    """--vtk-names vmtk on vessels with radii: VMTK's array names, a Radius array, and
+    vtkThreshold on the numeric rate keeps exactly the cells of one rate."""
+    pd = poly.GetPointData()
+    for name in ("Abscissas", "Curvature", "Torsion", "FrenetTangent", "FrenetNormal", "FrenetBinormal",
+                 "Radius"):
+        if pd.GetArray(name) is None:
+            sys.exit(f"no point array {name}")
+    for name in ("curvature", "torsion", "tangent", "normal", "binormal", "arc_length"):
+        if pd.GetArray(name) is not None:
+            sys.exit(f"point array {name} under its own name too")
+    r_min = min(float(r["r_min"]) for r in rows)
+    lo, hi = pd.GetArray("Radius").GetRange()
+    if lo < r_min - 1e-12:
+        sys.exit(f"Radius {lo} below the data's r_min {r_min}")
+    want = sum(1 for r in rows if r["rate"] == "10" and r["status"] in WITH_SAMPLES)
+    th = vtk.vtkThreshold()
+    th.SetInputData(poly)
+    th.SetInputArrayToProcess(0, 0, 0, vtk.vtkDataObject.FIELD_ASSOCIATION_CELLS, "rate")
+    th.SetLowerThreshold(10)
+    th.SetUpperThreshold(10)
+    th.SetThresholdFunction(vtk.vtkThreshold.THRESHOLD_BETWEEN)
+    th.Update()
+    got = th.GetOutput().GetNumberOfCells()
+    labels = th.GetOutput().GetCellData().GetAbstractArray("rate_label")
+    if got != want or any(labels.GetValue(i) != "10" for i in range(got)):
+        sys.exit(f"threshold rate = 10: {got} cells, the table has {want} rows at 10X")
+    return got
+
+
 def main():
     mode, vtp, tsv = sys.argv[1:4]
+    if mode == "vmtk":
+        poly, rows = read_vtp(vtp), read_tsv(tsv)
+        print(f"{vtp}: {check_vmtk(poly, rows)} cells at 10X by threshold, VMTK's names, Radius")
+        return
     poly, rows = read_vtp(vtp), read_tsv(tsv)
     checked = check_profile(poly, rows) if mode == "profile" else check_metrics(poly, rows)
     print(f"{vtp}: {poly.GetNumberOfPoints()} points, {poly.GetNumberOfCells()} cells, {checked} values agree")
