@@ -50,13 +50,18 @@ LDLIBS   = -lgsl -lgslcblas -lexpat -lz -lcrypto $(HDF5_LIBS) -lm
 .PHONY: all
 all: bin/tortuosity
 
-MODULES := phantom pipeline pspline stencil metrics frenet study vessel readers decimal   # in the order of paper.nw
-FORMAT_MODULES := vtk npy hdf5                    # the readers' format modules, declared in formats.h
+MODULES := phantom pipeline pspline stencil metrics frenet study vessel decimal   # the method, in the order of paper.nw
+# The readers in layers (each calls only those before it): bytes as text, the shared layer, the
+# formats (one file each, src/format-NAME.c, found in paper.nw; their rows are in formats.h, and
+# VTK's two share vtk-data), the table and dispatch.
+READER_MODULES := bytes reader vtk-data readers
+FORMAT_MODULES := $(shell sed -n 's|^<<src/\(format-[a-z0-9-]*\)\.c>>=$$|\1|p' paper.nw)
 API_MODULES    := api                             # the library's public interface, tortuosity.h
-HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES)))
-LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES) $(API_MODULES)))
-C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES)) \
-             $(addsuffix .c,$(MODULES) $(FORMAT_MODULES) $(API_MODULES)) tortuosity.c unit-tests.c fuzz-readers.c)
+HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES) $(READER_MODULES)))
+LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES) $(READER_MODULES)) \
+             $(addsuffix .c,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)) tortuosity.c unit-tests.c \
+             fuzz-readers.c)
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
@@ -117,7 +122,8 @@ build/tortuosity.1: paper.nw bin/tortuosity build/scripts/man-commands.awk | $(T
 	{ notangle -R'man/tortuosity.1' paper.nw | sed -e 's|@DATE@|$(MAN_DATE)|' -e 's|@VERSION@|$(VERSION)|'; \
 	  { echo "== main"; ./bin/tortuosity --help; \
 	    for c in metrics profile sufficient phantom phantom-study; do echo "== $$c"; ./bin/tortuosity $$c --help; done; \
-	    echo "== metric-list"; ./bin/tortuosity metrics --list-metrics; } \
+	    echo "== metric-list"; ./bin/tortuosity metrics --list-metrics; \
+	    echo "== format-list"; ./bin/tortuosity --list-formats; } \
 	  | awk -f build/scripts/man-commands.awk; notangle -R'man/tortuosity.1.end' paper.nw; } >$@.tmp && mv $@.tmp $@
 
 .PHONY: install uninstall
@@ -473,7 +479,7 @@ check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh $(TEST_LOCA
 # end-to-end tests compare its output with bin/tortuosity's, byte for byte (REFERENCE).
 SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all \
              -DTORTUOSITY_BASELINE_ONLY
-SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
 SAN_CC     = $(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS)
 
 build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
@@ -499,29 +505,21 @@ check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity bin/tortuosi
 	      build/sanitize/unit-tests.log build/sanitize/end-to-end.log build/sanitize/reliability.log
 
 # ---------------------------------------------------------------- fuzzing
-# One libFuzzer harness per reader, seeded from the real files; crashes land in build/fuzz/.
+# One libFuzzer harness per row of the format table, seeded from the real files; crashes land in
+# build/fuzz/. The formats, their seeds (shell globs under DATA_DIR) and their longest inputs are
+# the table's (tortuosity --list-formats): a new format is fuzzed without a line here.
 FUZZ_SECONDS ?= 150
-FUZZ_FORMATS := text csv swc angicart vtp vtk npy hdf5
-LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(MODULES) $(FORMAT_MODULES)))
+LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES)))
+format_field  = ./bin/tortuosity --list-formats | awk -F'\t' -v f='$(1)' '$$1 == f { print $$$(2) }'
 
 build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(TOOLS_fuzz)
 	@mkdir -p $(dir $@)
 	clang -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -D_GNU_SOURCE \
-	  -DFUZZ_FORMAT=FORMAT_$(shell echo $* | tr a-z A-Z) -Ibuild/src $(HDF5_CFLAGS) -o $@ $< $(LIB_SOURCES) $(LDLIBS)
+	  -DFUZZ_FORMAT='"$*"' -Ibuild/src $(HDF5_CFLAGS) -o $@ $< $(LIB_SOURCES) $(LDLIBS)
 
-# Seeds: the first 8000 bytes of up to twelve real files of the format (text: generated phantoms).
-# Shell globs, so that names with spaces stay whole.
-SEED_GLOBS_swc      := brava-*/*.swc brava-*/*/*.swc brava-*/*/*/*.swc
-SEED_GLOBS_csv      := */*.csv
-SEED_GLOBS_angicart := */*.dat
-SEED_GLOBS_vtp      := */*.vtp
-SEED_GLOBS_npy      := */*.npy
-SEED_GLOBS_hdf5     := */*.h5
-# The binary formats' seeds are whole files (a cut one is only a refused one); so are their inputs.
-FUZZ_MAX_LEN_vtp    := 65536
-FUZZ_MAX_LEN_npy    := 262144
-FUZZ_MAX_LEN_hdf5   := 2000000
-# Legacy VTK: the data have none; two small files, ASCII and binary, made by this program's tests.
+# Seeds: the first bytes (up to the longest input) of up to twelve real files of the format.
+# Shell globs, so that names with spaces stay whole. Plain text and legacy VTK, which the data
+# do not have, are seeded below.
 build/fuzz/corpus-vtk/.seeded: bin/tortuosity | $(TOOLS_test)
 	@mkdir -p $(@D)
 	/usr/bin/python3 tests/vtk-fixtures.py bin/tortuosity build/fuzz/vtk-fixtures >/dev/null
@@ -532,25 +530,26 @@ build/fuzz/corpus-text/.seeded: bin/tortuosity
 	./bin/tortuosity phantom --shape salkowski --sigma 0.01 -o $(@D)/salkowski.txt
 	./bin/tortuosity phantom --shape helix --count 3 --points 12 -o $(@D)/helices.txt
 	@touch $@
-build/fuzz/corpus-%/.seeded: data/manifest.tsv
+build/fuzz/corpus-%/.seeded: data/manifest.tsv bin/tortuosity
 	@mkdir -p $(@D)
-	@shopt -s nullglob; files=($(addprefix '$(DATA_DIR)'/,$(SEED_GLOBS_$*))); n=0; \
-	for f in "$${files[@]:0:12}"; do head -c $(or $(FUZZ_MAX_LEN_$*),8000) "$$f" >$(@D)/seed-$$n; n=$$((n + 1)); done; \
+	@globs=$$($(call format_field,$*,7)); max=$$($(call format_field,$*,8)); \
+	shopt -s nullglob; files=(); for g in $$globs; do [ "$$g" = - ] || files+=('$(DATA_DIR)'/$$g); done; n=0; \
+	for f in "$${files[@]:0:12}"; do head -c $$max "$$f" >$(@D)/seed-$$n; n=$$((n + 1)); done; \
 	touch $@
 
 # One run per reader; a crash stops with the input saved in build/fuzz/.
 build/fuzz/%.log: build/fuzz/fuzz-% build/fuzz/corpus-%/.seeded
 	@echo "fuzz $* for $(FUZZ_SECONDS) s"
-	@./build/fuzz/fuzz-$* -max_total_time=$(FUZZ_SECONDS) -max_len=$(or $(FUZZ_MAX_LEN_$*),16384) -print_final_stats=1 \
-	    -artifact_prefix=build/fuzz/crash-$*- build/fuzz/corpus-$* >$@.tmp 2>&1 \
+	@./build/fuzz/fuzz-$* -max_total_time=$(FUZZ_SECONDS) -max_len=$$($(call format_field,$*,8)) \
+	    -print_final_stats=1 -artifact_prefix=build/fuzz/crash-$*- build/fuzz/corpus-$* >$@.tmp 2>&1 \
 	  || { tail -40 $@.tmp; echo "fuzz $*: crash, input saved in build/fuzz/"; exit 1; }
 	@mv $@.tmp $@
 	@grep -E 'stat::number_of_executed_units|stat::peak_rss_mb' $@ | sed "s/^/fuzz $*: /"
 
 .PHONY: fuzz
-fuzz: | $(TOOLS_build)
-	@rm -f $(foreach f,$(FUZZ_FORMATS),build/fuzz/$(f).log)
-	@$(MAKE) --no-print-directory $(foreach f,$(FUZZ_FORMATS),build/fuzz/$(f).log)
+fuzz: bin/tortuosity | $(TOOLS_build)
+	@logs=$$(./bin/tortuosity --list-formats | awk -F'\t' 'NR > 1 { print "build/fuzz/" $$1 ".log" }'); \
+	rm -f $$logs; $(MAKE) --no-print-directory $$logs
 
 # ---------------------------------------------------------------- sharded runs
 # One metrics run split into SHARDS parts by --shard, run by GNU parallel on JOBS local slots
