@@ -56,12 +56,16 @@ MODULES := phantom pipeline pspline stencil metrics frenet study vessel decimal 
 # VTK's two share vtk-data), the table and dispatch.
 READER_MODULES := bytes reader vtk-data readers
 FORMAT_MODULES := $(shell sed -n 's|^<<src/\(format-[a-z0-9-]*\)\.c>>=$$|\1|p' paper.nw)
-API_MODULES    := api                             # the library's public interface, tortuosity.h
-HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES) $(READER_MODULES)))
+API_MODULES    := tortuosity                      # the library's public interface, tortuosity.h
+# The command line by job (each calls only those before it): text buffers, atomic output and
+# provenance, the table and VTK writers, the stream of windows and shards, the commands.
+CLI_MODULES    := textbuf output writers stream cli
+HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES) $(READER_MODULES) $(CLI_MODULES)))
 LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
-C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES) $(READER_MODULES)) \
-             $(addsuffix .c,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)) tortuosity.c unit-tests.c \
-             fuzz-readers.c)
+CLI_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(CLI_MODULES)))
+C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES) $(READER_MODULES) $(CLI_MODULES)) \
+             $(addsuffix .c,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES) $(CLI_MODULES)) \
+             unit-tests.c fuzz-readers.c)
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
@@ -91,9 +95,9 @@ build/src/version.h: FORCE | $(TOOLS_build)
 	if [ $$commit != unknown ] && ! git -C '$(CURDIR)' diff --quiet HEAD -- paper.nw Makefile; then \
 	  commit=$$commit+modified; fi; \
 	printf '#define TORT_VERSION "%s"\n#define TORT_COMMIT "%s"\n' '$(VERSION)' "$$commit" | cpif $@
-build/obj/tortuosity.o build/sanitize/tortuosity.o build/obj/api.o build/sanitize/api.o: build/src/version.h
+$(foreach d,obj sanitize,$(foreach m,cli output tortuosity,build/$(d)/$(m).o)): build/src/version.h
 
-bin/tortuosity: build/obj/tortuosity.o $(LIB_OBJ) | $(TOOLS_build)
+bin/tortuosity: $(CLI_OBJ) $(LIB_OBJ) | $(TOOLS_build)
 	@mkdir -p bin
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
@@ -105,7 +109,7 @@ build/unit-tests: build/obj/unit-tests.o $(LIB_OBJ) | $(TOOLS_build)
 build/lib/libtortuosity.a: $(LIB_OBJ) | $(TOOLS_build)
 	@mkdir -p $(@D)
 	ld -r -o build/lib/tortuosity.o $^
-	nm -g --defined-only build/obj/api.o | awk '$$3 ~ /^tort_/ { print $$3 }' >build/lib/public.syms
+	nm -g --defined-only build/obj/tortuosity.o | awk '$$3 ~ /^tort_/ { print $$3 }' >build/lib/public.syms
 	objcopy --keep-global-symbols=build/lib/public.syms build/lib/tortuosity.o
 	rm -f $@ && ar rcs $@ build/lib/tortuosity.o
 
@@ -487,7 +491,7 @@ build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
 	$(SAN_CC) -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
 build/sanitize/unit-tests: build/sanitize/unit-tests.o $(SAN_OBJ) | $(TOOLS_build)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
-build/sanitize/tortuosity: build/sanitize/tortuosity.o $(SAN_OBJ) | $(TOOLS_build)
+build/sanitize/tortuosity: $(addprefix build/sanitize/,$(addsuffix .o,$(CLI_MODULES))) $(SAN_OBJ) | $(TOOLS_build)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
 
 .PHONY: check-sanitize
