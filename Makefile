@@ -69,7 +69,8 @@ C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODUL
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
-           scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk
+           scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk \
+           scripts/structure.sh scripts/modules.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
@@ -373,6 +374,16 @@ build/metrics-table.tex: bin/tortuosity
 	             print "column & unit & defined when the vessel has & meaning \\\\\\midrule" } \
 	   NR > 1  { gsub(/_/, "\\_"); printf "\\texttt{%s} & %s & %s & %s \\\\\n", $$1, $$2 == "" ? "--" : $$2, $$3, $$4 } \
 	   END     { print "\\bottomrule\\end{tabular}" }' >$@.tmp && mv $@.tmp $@
+# Section 1's table of modules: the Makefile's lists, layer by layer, each module with the first
+# line of its header (or, for a format, of its file), which says its job.
+MODULE_LAYERS := method:geom~$(subst $(space),~,$(MODULES)) \
+                 reading:$(subst $(space),~,$(READER_MODULES) $(FORMAT_MODULES)) \
+                 command~line:$(subst $(space),~,$(CLI_MODULES)) library:$(API_MODULES)
+build/modules.tex: build/scripts/modules.awk $(HEADERS) $(addprefix build/src/,$(addsuffix .c,$(FORMAT_MODULES)))
+	for layer in $(MODULE_LAYERS); do for m in $$(echo $${layer#*:} | tr '~' ' '); do \
+	  f=build/src/$$m.h; [ -f $$f ] || f=build/src/$$m.c; \
+	  printf '%s\t%s\t%s\t%s\n' "$$(echo $${layer%%:*} | tr '~' ' ')" $$m $$(basename $$f) "$$(grep -m1 '^/\* .* \*/$$' $$f)"; \
+	done; done | awk -F'\t' -f build/scripts/modules.awk >$@.tmp && mv $@.tmp $@
 build/interfaces.tex: build/scripts/interfaces.awk $(HEADERS)
 	awk -f $< $(filter %.h,$^) >$@.tmp && mv $@.tmp $@
 
@@ -441,7 +452,7 @@ awk '/^Overfull \\hbox/ { w = $$3; sub(/\(/, "", w); if (w + 0 > 1) { print "bui
 && { ! pdffonts build/paper.pdf | grep 'Type 3' || { echo "build/paper.pdf: a Type 3 (bitmap) font"; exit 1; }; }
 endef
 
-REPORT_INPUTS := build/paper.tex build/metrics-table.tex build/interfaces.tex build/concordance.tex
+REPORT_INPUTS := build/paper.tex build/metrics-table.tex build/interfaces.tex build/concordance.tex build/modules.tex
 
 build/paper.pdf: $(REPORT_INPUTS) $(RESULT_TABLES) $(FIGURES) | $(TOOLS_report)
 	$(run_pdflatex)
@@ -467,7 +478,7 @@ $(TEST_LOCALE): | $(TOOLS_test)
 	localedef -i de_DE -f UTF-8 $@
 
 .PHONY: check
-check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh $(TEST_LOCALE) | $(TOOLS_test)
+check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh build/scripts/structure.sh $(TEST_LOCALE) | $(TOOLS_test)
 	@echo "== unit tests (paper.nw)"
 	@./build/unit-tests | tee build/unit-tests.log
 	@echo "== end-to-end checks (tests/)"
@@ -580,10 +591,12 @@ sharded: bin/tortuosity | $(TOOLS_parallel)
 
 # ---------------------------------------------------------------- lint, benchmark, clean
 .PHONY: lint
-lint: build/scripts/tools-lint.sh build/scripts/shell-commands.awk | $(foreach s,$(TOOL_STAGES),$(TOOLS_$(s)))
+lint: build/scripts/tools-lint.sh build/scripts/shell-commands.awk build/scripts/structure.sh $(CLI_OBJ) $(LIB_OBJ) \
+    | $(foreach s,$(TOOL_STAGES),$(TOOLS_$(s)))
 	@diff <(noroots paper.nw | sed 's/^<<\(.*\)>>$$/\1/' | sort) <(printf '%s\n' $(ROOTS) | sort) \
 	  && echo "lint: chunk roots match the Makefile" \
 	  || { echo "lint: roots of paper.nw ('<') differ from the Makefile ('>'); a misspelled chunk name?"; exit 1; }
+	@bash build/scripts/structure.sh paper.nw $(CLI_OBJ) $(LIB_OBJ)
 	@bash build/scripts/tools-lint.sh '$(MAKE)' build/scripts/shell-commands.awk \
 	  $(foreach s,$(TOOL_STAGES),'$(s)=$(PACKAGES_$(s))')
 

@@ -44,6 +44,25 @@ if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
       lint_catches_missing_package
   fi
 
+  # The shape check of make lint names a loop of calls between two files, a file over 1,000
+  # lines and a chunk over 120 lines; the package itself passes it (make lint, above).
+  structure_finds_what_is_wrong() {
+    local d=$work/structure
+    mkdir -p "$d/build/src" && cd "$d" || return 1
+    printf 'int b(int);\nint a(int x) { return x ? b(x - 1) : 0; }\n' >build/src/a.c
+    { printf 'int a(int);\nint b(int x) { return a(x);\n'; for i in $(seq 1000); do echo; done; echo '}'; } >build/src/b.c
+    cc -c -o a.o build/src/a.c && cc -c -o b.o build/src/b.c || { cd - >/dev/null; return 1; }
+    { echo '<<long>>='; seq 121; echo '@'; echo '<<short>>='; seq 120; echo '@'; } >doc.nw
+    ! bash "$REPO/build/scripts/structure.sh" doc.nw a.o b.o >out.txt 2>&1
+    local failed=$?
+    cd - >/dev/null
+    [ $failed = 0 ] && grep -q 'go round in a loop' "$d/out.txt" && grep -q 'build/src/b.c: 1003 lines' "$d/out.txt" \
+      && grep -q 'doc.nw:1: <<long>>= is 121 lines' "$d/out.txt" && ! grep -q '<<short>>' "$d/out.txt" \
+      || { cat "$d/out.txt"; return 1; }
+  }
+  check "make lint's shape check names a loop of calls, a C file over 1,000 lines and a chunk over 120" \
+    structure_finds_what_is_wrong
+
   # make install into a temporary prefix (and staged under DESTDIR); the manual page renders;
   # a C program built with pkg-config reads a file and measures a circle through the library.
   install_and_link() {
