@@ -171,10 +171,9 @@ OPTIONS_filtered       := --filter
 # ---------------------------------------------------------------- data -> results
 # Per-vessel results (large, not committed), each written atomically by tortuosity -o.
 
-# Every dataset at every rate, measured each way: build/results/VARIANT/DATASET.tsv.
-RUNS := $(foreach v,$(VARIANTS),$(foreach d,$(DATASETS),build/results/$(v)/$(d).tsv))
 # The dataset's files under DATA_DIR, from the manifest (a shell array), or a stop.
 manifest_field = awk -F'\t' -v d='$(1)' '$$1 == d { print $$$(2) }' data/manifest.tsv
+manifest_value = $(shell $(call manifest_field,$(1),$(2)))
 define dataset_files
 pattern=$$($(call manifest_field,$(1),2)); \
 shopt -s nullglob; files=('$(DATA_DIR)'/$$pattern); \
@@ -199,10 +198,24 @@ build/data/%.sha256: data/manifest.tsv FORCE
 	  echo "  (list them with: cd $(DATA_DIR) && sha256sum $$pattern)" >&2; exit 2; fi; \
 	echo "$$found" | cmp -s - $@ || echo "$$found" >$@
 
-$(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity build/data/$$(*F).sha256
-	@mkdir -p $(@D)
-	@$(call dataset_files,$(*F)); echo "measure $(*F) ($(*D)): $${#files[@]} file(s)"; \
-	./bin/tortuosity metrics -q --rates $(RATE_LIST) $(OPTIONS_$(*D)) $(call read_options,$(*F)) -o $@ "$${files[@]}"
+# Every measurement of a dataset is one recipe: $(call measure,DATASET,MESSAGE,WORDS[,INDEX]) runs
+# ./bin/tortuosity WORDS with the dataset's reading options, -o $@, on all its files (or on
+# "${files[INDEX]}" alone); MESSAGE, if any, is echoed first.
+define measure
+@mkdir -p $(@D)
+@$(call dataset_files,$(1)); $(if $(2),echo "$(2)"; )\
+./bin/tortuosity $(3) $(call read_options,$(1)) -o $@ "$${files[$(or $(4),@)]}"
+endef
+# What a measurement needs; the dataset is the target's file name ($$(*F), at secondary expansion).
+MEASURED = data/manifest.tsv bin/tortuosity build/data/$$(*F).sha256
+# $(call cell,TARGET,NAME=VALUE ...) is TARGET, each NAME set to VALUE in its recipe (private: not in
+# its prerequisites'), so that a grid's coordinates are variables, not words of the path.
+cell = $(foreach v,$(2),$(eval $(1): private $(subst =, := ,$(v))))$(1)
+
+# Every dataset at every rate, measured each way: build/results/VARIANT/DATASET.tsv.
+RUNS := $(foreach v,$(VARIANTS),$(foreach d,$(DATASETS),build/results/$(v)/$(d).tsv))
+$(RUNS): build/results/%.tsv: $(MEASURED)
+	$(call measure,$(*F),measure $(*F) ($(*D)): $${#files[@]} file(s),metrics -q --rates $(RATE_LIST) $(OPTIONS_$(*D)))
 
 # Torsion or noise: every dataset and its null twins (straight, planar; on the dataset's own
 # precision, the manifest's last column), under the paper's torsion reading and under the
@@ -210,31 +223,23 @@ $(RUNS): build/results/%.tsv: data/manifest.tsv bin/tortuosity build/data/$$(*F)
 NOISE_READINGS := paper significant
 NOISE_TWINS    := data straight planar
 NOISE_RUNS     := $(foreach r,$(NOISE_READINGS),$(foreach t,$(NOISE_TWINS),$(foreach d,$(DATASETS),\
-                    build/results/noise/$(r)/$(t)/$(d).tsv)))
+                    $(call cell,build/results/noise/$(r)/$(t)/$(d).tsv,NOISE_READING=$(r) NOISE_TWIN=$(t)))))
 noise_twin      = $(if $(filter-out data,$(1)),--null $(1) --precision '$(call manifest_value,$(2),10)')
-manifest_value  = $(shell $(call manifest_field,$(1),$(2)))
-$(NOISE_RUNS): build/results/noise/%.tsv: data/manifest.tsv bin/tortuosity build/data/$$(*F).sha256
-	@mkdir -p $(@D)
-	@$(call dataset_files,$(*F)); echo "noise: $(*F), $(subst /,: ,$(*D))"; \
-	./bin/tortuosity metrics -q --rates $(RATE_LIST) --torsion $(firstword $(subst /, ,$(*D))) \
-	  $(call noise_twin,$(lastword $(subst /, ,$(*D))),$(*F)) $(call read_options,$(*F)) -o $@ "$${files[@]}"
+$(NOISE_RUNS): build/results/noise/%.tsv: $(MEASURED)
+	$(call measure,$(*F),noise: $(*F)$(comma) $(NOISE_READING): $(NOISE_TWIN),metrics -q --rates $(RATE_LIST) \
+	  --torsion $(NOISE_READING) $(call noise_twin,$(NOISE_TWIN),$(*F)))
 
 # The smallest sufficient rate per vessel, for the datasets with radii:
 # build/results/sufficient/INTEGRATOR/DATASET.tsv.
 SUFFICIENT := $(foreach i,$(INTEGRATORS),$(foreach d,$(RADII_DATASETS),build/results/sufficient/$(i)/$(d).tsv))
-
-$(SUFFICIENT): build/results/sufficient/%.tsv: data/manifest.tsv bin/tortuosity build/data/$$(*F).sha256
-	@mkdir -p $(@D)
-	@$(call dataset_files,$(*F)); echo "sufficient rate: $(*F) ($(*D))"; \
-	./bin/tortuosity sufficient -q --integrator $(*D) $(call read_options,$(*F)) -o $@ "$${files[@]}"
+$(SUFFICIENT): build/results/sufficient/%.tsv: $(MEASURED)
+	$(call measure,$(*F),sufficient rate: $(*F) ($(*D)),sufficient -q --integrator $(*D))
 
 # Views of the data (the paper's Figure 1): every vessel of the first file of each dataset, raw,
 # and a Salkowski phantom: build/results/views/NAME.tsv.
 VIEWS := $(foreach d,$(DATASETS),build/results/views/$(d).tsv)
-$(VIEWS): build/results/views/%.tsv: data/manifest.tsv bin/tortuosity build/data/%.sha256
-	@mkdir -p $(@D)
-	@$(call dataset_files,$*); ./bin/tortuosity profile -q --rate raw --vessel all $(call read_options,$*) \
-	  -o $@ "$${files[0]}"
+$(VIEWS): build/results/views/%.tsv: $(MEASURED)
+	$(call measure,$*,,profile -q --rate raw --vessel all,0)
 build/results/views/salkowski.tsv: bin/tortuosity
 	@mkdir -p $(@D)
 	./bin/tortuosity phantom --shape salkowski | ./bin/tortuosity profile -q --rate raw -o $@ -
@@ -253,14 +258,10 @@ density_of       = $(lastword $(subst :, ,$(filter $(1):%,$(PAPER_DENSITIES))))
 
 # O'Flynn's curvature and torsion along the arteries at 5 points/mm (its Figure S3), on the aorta.
 build/results/density/aorta-ct-profile.tsv: data/manifest.tsv bin/tortuosity build/data/aorta-ct.sha256
-	@mkdir -p $(@D)
-	@$(call dataset_files,aorta-ct); ./bin/tortuosity profile -q --rate $(call density_of,aorta-ct)/mm \
-	  --vessel all $(call read_options,aorta-ct) -o $@ "$${files[0]}"
+	$(call measure,aorta-ct,,profile -q --rate $(call density_of,aorta-ct)/mm --vessel all,0)
 
-$(DENSITY_RUNS): build/results/density/%.tsv: data/manifest.tsv bin/tortuosity build/data/%.sha256
-	@mkdir -p $(@D)
-	@$(call dataset_files,$*); echo "measure $* at $(call density_of,$*) points/mm"; \
-	./bin/tortuosity metrics -q --rates $(call density_of,$*)/mm $(call read_options,$*) -o $@ "$${files[@]}"
+$(DENSITY_RUNS): build/results/density/%.tsv: $(MEASURED)
+	$(call measure,$*,measure $* at $(call density_of,$*) points/mm,metrics -q --rates $(call density_of,$*)/mm)
 
 # The phantom study (report, "The phantom study"): each shape at the paper's three noise
 # parameters, read as a standard deviation and as a variance, at the two densities the paper
@@ -276,20 +277,20 @@ PAPER_SIGMAS := circle:0.0005 helix:0.1 salkowski:0.001
 # penalty order is not stated, Eilers and Marx's usual second order is taken.
 FIT_package :=
 FIT_paper   := --degree 5 --penalty-order 2 --segments 15
-study_cells = $(foreach s,$(SHAPES),$(foreach d,$(DENSITIES),build/results/study/$(1)/$(s)/$(d)/clean.tsv \
-                $(foreach r,$(READINGS),$(foreach g,$(2),build/results/study/$(1)/$(s)/$(d)/$(r)-$(g).tsv))))
-STUDY_PACKAGE := $(call study_cells,package,$(SIGMAS))
-paper_cells = $(foreach d,$(DENSITIES),build/results/study/paper/$(1)/$(d)/clean.tsv \
-                $(foreach r,$(READINGS),build/results/study/paper/$(1)/$(d)/$(r)-$(2).tsv))
-STUDY_PAPER   := $(foreach p,$(PAPER_SIGMAS),$(call paper_cells,$(word 1,$(subst :, ,$(p))),$(word 2,$(subst :, ,$(p)))))
-# The stem is FIT/SHAPE/DENSITY/CELL; CELL is clean or READING-SIGMA.
-study_word = $(word $(1),$(subst /, ,$*))
-study_noise = $(if $(filter clean,$(call study_word,4)),,--reading $(firstword $(subst -, ,$(call study_word,4))) \
-                --sigma $(lastword $(subst -, ,$(call study_word,4))) --count $(STUDY_COUNT))
-build/results/study/%.tsv: bin/tortuosity
+# $(call study_cell,FIT,SHAPE,DENSITY[,READING,SIGMA]): one cell, its coordinates its variables
+# (no READING: the noise-free phantom).
+study_cell  = $(call cell,build/results/study/$(1)/$(2)/$(3)/$(if $(4),$(4)-$(5),clean).tsv,\
+                STUDY_FIT=$(1) STUDY_SHAPE=$(2) STUDY_DENSITY=$(3) STUDY_READING=$(4) STUDY_SIGMA=$(5))
+# $(call study_cells,FIT,SHAPE,SIGMAS): at each density the noise-free cell, then each reading of each sigma.
+study_cells = $(foreach d,$(DENSITIES),$(call study_cell,$(1),$(2),$(d)) \
+                $(foreach r,$(READINGS),$(foreach g,$(3),$(call study_cell,$(1),$(2),$(d),$(r),$(g)))))
+STUDY_PACKAGE := $(foreach s,$(SHAPES),$(call study_cells,package,$(s),$(SIGMAS)))
+STUDY_PAPER   := $(foreach p,$(PAPER_SIGMAS),$(call study_cells,paper,$(word 1,$(subst :, ,$(p))),$(word 2,$(subst :, ,$(p)))))
+study_noise = $(if $(STUDY_READING),--reading $(STUDY_READING) --sigma $(STUDY_SIGMA) --count $(STUDY_COUNT))
+$(STUDY_PACKAGE) $(STUDY_PAPER): bin/tortuosity
 	@mkdir -p $(@D)
-	./bin/tortuosity phantom-study --shape $(call study_word,2) --density $(call study_word,3) \
-	  $(study_noise) --rates $(RATE_LIST) $(FIT_$(call study_word,1)) -o $@
+	./bin/tortuosity phantom-study --shape $(STUDY_SHAPE) --density $(STUDY_DENSITY) \
+	  $(study_noise) --rates $(RATE_LIST) $(FIT_$(STUDY_FIT)) -o $@
 # One table per fit, header once, cells in the order of the grid (committed).
 results/phantom-summary.tsv: $(STUDY_PACKAGE)
 results/phantom-summary-paper-fit.tsv: $(STUDY_PAPER)
@@ -306,17 +307,21 @@ build/results/phantom-truth.tsv: $(foreach s,$(SHAPES),build/results/truth/$(s).
 	  $^ >$@.tmp && mv $@.tmp $@
 
 # One coronary centerline, sample by sample, for the profile figure: profile-RATE[-rotation].tsv.
+# It is vessel 1 of the dataset's FUMPE file, named here: the manifest's pattern also matches the
+# orCaScore file, which sorts first. Its folder is the manifest's.
 PROFILE_DATASET = coronary-ct
-PROFILE_INPUT   = $(DATA_DIR)/fdenz-coronary/centerlines.npy
+PROFILE_FILE    = centerlines.npy
+PROFILE_INPUT   = $(DATA_DIR)/$(dir $(call manifest_value,$(PROFILE_DATASET),2))$(PROFILE_FILE)
 PROFILE_OPTIONS = --vessel 1 $(call read_options,$(PROFILE_DATASET))
+PROFILE_NEEDS   = data/manifest.tsv bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 # The same centerline with Bullitt's filter (the paper's Figure 5).
-build/results/profile-%-filtered.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
+build/results/profile-%-filtered.tsv: $(PROFILE_NEEDS)
 	@mkdir -p $(@D)
 	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) --filter -o $@ '$(PROFILE_INPUT)'
-build/results/profile-%-rotation.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
+build/results/profile-%-rotation.tsv: $(PROFILE_NEEDS)
 	@mkdir -p $(@D)
 	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) --integrator rotation -o $@ '$(PROFILE_INPUT)'
-build/results/profile-%.tsv: bin/tortuosity build/data/$(PROFILE_DATASET).sha256
+build/results/profile-%.tsv: $(PROFILE_NEEDS)
 	@mkdir -p $(@D)
 	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) -o $@ '$(PROFILE_INPUT)'
 
