@@ -70,7 +70,8 @@ SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp sc
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
            scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk \
-           scripts/structure.sh scripts/modules.awk
+           scripts/structure.sh scripts/modules.awk scripts/concordance-tsv.awk scripts/concordance-table.awk \
+           scripts/metrics-table.awk scripts/phantom-truth.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
@@ -302,9 +303,8 @@ results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv:
 build/results/truth/%.tsv: bin/tortuosity
 	@mkdir -p $(@D)
 	./bin/tortuosity phantom --shape $* --truth -o $@
-build/results/phantom-truth.tsv: $(foreach s,$(SHAPES),build/results/truth/$(s).tsv)
-	awk 'NR == 1 { print "shape\t" $$0 } FNR > 1 { n = split(FILENAME, part, "[/.]"); print part[n - 1] "\t" $$0 }' \
-	  $^ >$@.tmp && mv $@.tmp $@
+build/results/phantom-truth.tsv: build/scripts/phantom-truth.awk $(foreach s,$(SHAPES),build/results/truth/$(s).tsv)
+	awk -f $< $(filter %.tsv,$^) >$@.tmp && mv $@.tmp $@
 
 # One coronary centerline, sample by sample, for the profile figure: profile-RATE[-rotation].tsv.
 # It is vessel 1 of the dataset's FUMPE file, named here: the manifest's pattern also matches the
@@ -354,31 +354,17 @@ $(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS
 
 # The paper's tables and figures with their counterparts (report, near the start), from the
 # concordance chunk; 'make reproduce' checks that every file a row names exists.
-results/concordance.tsv: paper.nw | $(TOOLS_build)
+results/concordance.tsv: paper.nw build/scripts/concordance-tsv.awk | $(TOOLS_build)
 	@mkdir -p results
-	{ printf 'item\tlabel\tstatus\tfile\there\tnote\n'; notangle -R'concordance' $< \
-	  | awk '/^ / { sub(/^ +/, " "); row = row $$0; next } row != "" { print row } { row = $$0 } END { print row }' \
-	  | sed 's/ *| */\t/g'; } >$@.tmp && mv $@.tmp $@
+	notangle -R'concordance' $< | awk -f build/scripts/concordance-tsv.awk >$@.tmp && mv $@.tmp $@
 check_concordance = awk -F'\t' 'NR > 1 && $$4 != "-" && system("test -f " $$4) { print "$<: " $$1 ": no file " $$4; \
                       bad = 1 } END { exit bad }' $< >&2
-build/concordance.tex: results/concordance.tsv
-	awk -F'\t' 'NR == 1 { print "{\\small\\begin{longtable}{@{}ll>{\\raggedright}p{2.1cm}>{\\raggedright\\arraybackslash}p{10.4cm}@{}}"; \
-	                      print "\\caption{The paper'\''s tables and figures (left) and their counterparts here.}\\label{tab:concordance}\\\\"; \
-	                      print "\\toprule paper & here & status & what agrees and what does not\\\\\\midrule\\endhead"; next } \
-	   { n[$$3]++; sub(/-reproducible/, " reproducible", $$3); \
-	     here = $$5 == "-" ? "--" : sprintf("%s~\\ref{%s}, p.~\\pageref{%s}", $$5 ~ /^fig:/ ? "Fig." : "Table", $$5, $$5); \
-	     printf "%s & %s & %s & %s\\\\\n", $$1, here, $$3, $$6 } \
-	   END { print "\\bottomrule\\end{longtable}}"; \
-	         printf "\\noindent In all: %d reproduced, %d differ, %d stand-ins, %d not reproducible.\n", \
-	                n["reproduced"], n["differs"], n["stand-in"], n["not-reproducible"] }' $< >$@.tmp && mv $@.tmp $@
+build/concordance.tex: build/scripts/concordance-table.awk results/concordance.tsv
+	awk -F'\t' -f $^ >$@.tmp && mv $@.tmp $@
 
 # The report's table of metrics and list of interfaces come from the code itself.
-build/metrics-table.tex: bin/tortuosity
-	./bin/tortuosity metrics --list-metrics | awk -F'\t' \
-	  'NR == 1 { print "\\begin{tabular}{llll}\\toprule"; \
-	             print "column & unit & defined when the vessel has & meaning \\\\\\midrule" } \
-	   NR > 1  { gsub(/_/, "\\_"); printf "\\texttt{%s} & %s & %s & %s \\\\\n", $$1, $$2 == "" ? "--" : $$2, $$3, $$4 } \
-	   END     { print "\\bottomrule\\end{tabular}" }' >$@.tmp && mv $@.tmp $@
+build/metrics-table.tex: bin/tortuosity build/scripts/metrics-table.awk
+	./bin/tortuosity metrics --list-metrics | awk -F'\t' -f build/scripts/metrics-table.awk >$@.tmp && mv $@.tmp $@
 # Section 1's table of modules: the Makefile's lists, layer by layer, each module with the first
 # line of its header (or, for a format, of its file), which says its job.
 MODULE_LAYERS := method:geom~$(subst $(space),~,$(MODULES)) \
