@@ -72,7 +72,8 @@ SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp sc
            scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk \
            scripts/structure.sh scripts/modules.awk scripts/concordance-tsv.awk scripts/concordance-table.awk \
            scripts/metrics-table.awk scripts/phantom-truth.awk
-ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end
+ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end \
+           python/tortuosity/__init__.py
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
 build/src/%: paper.nw | $(TOOLS_build)
@@ -90,14 +91,14 @@ build/obj/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
 
 # The version, declared here once, and the commit the program is built from, for --version and
 # the provenance of every result ("+modified" when paper.nw or the Makefile differ from it).
-VERSION := 1.1.0
+VERSION := 1.2.0
 build/src/version.h: FORCE | $(TOOLS_build)
 	@mkdir -p $(@D)
 	@commit=$$(git -C '$(CURDIR)' rev-parse --short=12 HEAD 2>/dev/null) || commit=unknown; \
 	if [ $$commit != unknown ] && ! git -C '$(CURDIR)' diff --quiet HEAD -- paper.nw Makefile; then \
 	  commit=$$commit+modified; fi; \
 	printf '#define TORT_VERSION "%s"\n#define TORT_COMMIT "%s"\n' '$(VERSION)' "$$commit" | cpif $@
-$(foreach d,obj sanitize,$(foreach m,cli output tortuosity,build/$(d)/$(m).o)): build/src/version.h
+$(foreach d,obj sanitize pic,$(foreach m,cli output tortuosity,build/$(d)/$(m).o)): build/src/version.h
 
 bin/tortuosity: $(CLI_OBJ) $(LIB_OBJ) | $(TOOLS_build)
 	@mkdir -p bin
@@ -115,8 +116,33 @@ build/lib/libtortuosity.a: $(LIB_OBJ) | $(TOOLS_build)
 	objcopy --keep-global-symbols=build/lib/public.syms build/lib/tortuosity.o
 	rm -f $@ && ar rcs $@ build/lib/tortuosity.o
 
+# libtortuosity.so: the same modules as position-independent code; a version script keeps only
+# the tort_ names global. Its soname changes when tortuosity.h changes incompatibly.
+SOVERSION := 1
+SHARED_LIB := build/lib/libtortuosity.so.$(VERSION)
+PIC_OBJ := $(addprefix build/pic/,$(addsuffix .o,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+build/pic/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
+	@mkdir -p $(dir $@)
+	$(CC) $(CFLAGS) -fPIC -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
+$(SHARED_LIB): $(PIC_OBJ) | $(TOOLS_build)
+	@mkdir -p $(@D)
+	printf 'TORTUOSITY_%s {\n  global: tort_*;\n  local: *;\n};\n' $(SOVERSION) >build/lib/tortuosity.map
+	$(CC) $(CFLAGS) -shared -Wl,-soname,libtortuosity.so.$(SOVERSION) -Wl,--version-script=build/lib/tortuosity.map \
+	  -o $@ $^ $(LDLIBS)
+	ln -sf $(@F) build/lib/libtortuosity.so.$(SOVERSION) && ln -sf $(@F) build/lib/libtortuosity.so
+
+# The installed header has no #line marks (those point into paper.nw, for the compiler's messages).
+build/include/tortuosity.h: paper.nw | $(TOOLS_build)
+	@mkdir -p $(@D)
+	notangle -R'src/tortuosity.h' paper.nw | cpif $@
+# The Python package, pure Python over the shared library (ctypes; numpy from Debian).
+build/python/tortuosity/__init__.py: paper.nw | $(TOOLS_build)
+	@mkdir -p $(@D)
+	notangle -R'python/tortuosity/__init__.py' paper.nw | cpif $@
+
 PREFIX  ?= /usr/local
 DESTDIR ?=
+PYTHON_DIR = lib/python3/dist-packages
 # Remade on every run (PREFIX is in it), replaced only when it changes.
 build/tortuosity.pc: paper.nw FORCE | $(TOOLS_build)
 	@notangle -R'tortuosity.pc.in' paper.nw | sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' \
@@ -133,17 +159,23 @@ build/tortuosity.1: paper.nw bin/tortuosity build/scripts/man-commands.awk | $(T
 	  | awk -f build/scripts/man-commands.awk; notangle -R'man/tortuosity.1.end' paper.nw; } >$@.tmp && mv $@.tmp $@
 
 .PHONY: install uninstall
-INSTALLED := bin/tortuosity lib/libtortuosity.a include/tortuosity.h lib/pkgconfig/tortuosity.pc \
-             share/man/man1/tortuosity.1
-install: bin/tortuosity build/lib/libtortuosity.a build/src/tortuosity.h build/tortuosity.pc build/tortuosity.1
-	install -d '$(DESTDIR)$(PREFIX)'/{bin,lib/pkgconfig,include,share/man/man1}
+INSTALLED := bin/tortuosity lib/libtortuosity.a lib/libtortuosity.so.$(VERSION) lib/libtortuosity.so.$(SOVERSION) \
+             lib/libtortuosity.so include/tortuosity.h lib/pkgconfig/tortuosity.pc share/man/man1/tortuosity.1 \
+             $(PYTHON_DIR)/tortuosity/__init__.py
+install: bin/tortuosity build/lib/libtortuosity.a $(SHARED_LIB) build/include/tortuosity.h build/tortuosity.pc \
+    build/tortuosity.1 build/python/tortuosity/__init__.py
+	install -d '$(DESTDIR)$(PREFIX)'/{bin,lib/pkgconfig,include,share/man/man1,$(PYTHON_DIR)/tortuosity}
 	install -m 755 bin/tortuosity '$(DESTDIR)$(PREFIX)/bin/'
-	install -m 644 build/lib/libtortuosity.a '$(DESTDIR)$(PREFIX)/lib/'
-	install -m 644 build/src/tortuosity.h '$(DESTDIR)$(PREFIX)/include/'
+	install -m 644 build/lib/libtortuosity.a $(SHARED_LIB) '$(DESTDIR)$(PREFIX)/lib/'
+	ln -sf libtortuosity.so.$(VERSION) '$(DESTDIR)$(PREFIX)/lib/libtortuosity.so.$(SOVERSION)'
+	ln -sf libtortuosity.so.$(VERSION) '$(DESTDIR)$(PREFIX)/lib/libtortuosity.so'
+	install -m 644 build/include/tortuosity.h '$(DESTDIR)$(PREFIX)/include/'
 	install -m 644 build/tortuosity.pc '$(DESTDIR)$(PREFIX)/lib/pkgconfig/'
 	install -m 644 build/tortuosity.1 '$(DESTDIR)$(PREFIX)/share/man/man1/'
+	install -m 644 build/python/tortuosity/__init__.py '$(DESTDIR)$(PREFIX)/$(PYTHON_DIR)/tortuosity/'
 uninstall:
 	rm -f $(addprefix '$(DESTDIR)$(PREFIX)'/,$(INSTALLED))
+	-rmdir '$(DESTDIR)$(PREFIX)/$(PYTHON_DIR)/tortuosity' 2>/dev/null
 
 # ---------------------------------------------------------------- the experiment grid
 # Declared once; passed to the program, to R and to gnuplot.
@@ -476,9 +508,13 @@ check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh build/scrip
 	@DATA_DIR='$(DATA_DIR)' REPO='$(CURDIR)' bash tests/end-to-end.sh bin/tortuosity | tee build/end-to-end.log
 	@echo "== reliability checks (tests/)"
 	@bash tests/reliability.sh bin/tortuosity | tee build/reliability.log
+	@echo "== the Python package, installed into build/check-prefix (tests/)"
+	@rm -rf build/check-prefix && $(MAKE) -s install PREFIX='$(CURDIR)/build/check-prefix' >build/check-install.log
+	@PYTHONPATH=build/check-prefix/$(PYTHON_DIR) /usr/bin/python3 tests/python-api.py bin/tortuosity \
+	  | tee build/python-api.log
 	@awk '$(COUNT_LINE) { p += $$(NF - 3); f += $$(NF - 1) } \
 	      END { printf "check: %d passed, %d failed\n", p, f; exit f > 0 }' \
-	      build/unit-tests.log build/end-to-end.log build/reliability.log
+	      build/unit-tests.log build/end-to-end.log build/reliability.log build/python-api.log
 
 # The same suite with AddressSanitizer and UndefinedBehaviorSanitizer; any report is fatal.
 # The sanitizer build is also the baseline x86-64 build (no AVX2 clones of the hot loops): its

@@ -110,8 +110,15 @@ PROGRAM
       || { echo "library on a circle of radius 5 mm: $got (want AC 0.2/mm)"; return 1; }
     ! nm -g --defined-only "$prefix/lib/libtortuosity.a" | awk 'NF == 3 && $3 !~ /^tort_/' | grep -q . \
       || { echo "names other than tort_ are global in the library"; return 1; }
+    ! nm -D --defined-only "$prefix/lib/libtortuosity.so.1" | awk 'NF == 3 && $3 !~ /^(tort_|TORTUOSITY_)/' \
+      | grep -q . || { echo "names other than tort_ are exported by the shared library"; return 1; }
+    objdump -p "$prefix/lib/libtortuosity.so" | grep -q 'SONAME *libtortuosity\.so\.1$' || { echo "soname"; return 1; }
+    ! grep -q '^#line' "$prefix/include/tortuosity.h" || { echo "#line in the installed header"; return 1; }
+    got=$(cd / && env -i PATH=/usr/bin:/bin PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
+      'import tortuosity, numpy; t = numpy.linspace(0, 3, 40); m = tortuosity.measure(numpy.column_stack([5 * numpy.cos(t), 5 * numpy.sin(t), 0 * t])); print(m["status"], round(m["AC"], 4))') \
+      && [ "$got" = "ok 0.2" ] || { echo "Python from the prefix: $got"; return 1; }
   }
-  check "make install: program, man -l (EXAMPLES, METRICS, SEE ALSO), and a C program linked with pkg-config measures a circle" install_and_link
+  check "make install: program, man -l, a C program linked with pkg-config and Python from the prefix measure a circle; only tort_ names exported" install_and_link
 
   # A data file that is not the one the manifest names stops make before any result, with a message.
   if [ -f "$DATA_DIR/vmtk-aorta/aorta-centerline.vtp" ]; then
