@@ -405,6 +405,9 @@ if "$PYTHON" -c 'import vtk' 2>/dev/null; then
   check "36 .vtp/.vtk files in every encoding VTK writes: read as VTK reads them" \
     bash -c "'$PYTHON' '$(dirname "${BASH_SOURCE[0]}")/vtk-fixtures.py' '$T' '$work/vtk-fixtures' >'$work/vtk-fixtures.log' \
              || { tail -3 '$work/vtk-fixtures.log'; exit 1; }"
+  check "--vmtk-branches on VTK-written branch-extractor output (.vtp, .vtk, a vertex first): a vessel per group, blanked left out" \
+    bash -c "'$PYTHON' '$(dirname "${BASH_SOURCE[0]}")/vmtk-branches.py' '$T' '$work/vmtk-branches' >'$work/vmtk-branches.log' \
+             || { grep FAIL '$work/vmtk-branches.log'; exit 1; }"
 fi
 
 if "$PYTHON" -c 'import h5py' 2>/dev/null; then
