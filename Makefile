@@ -73,7 +73,7 @@ SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp sc
            scripts/structure.sh scripts/modules.awk scripts/concordance-tsv.awk scripts/concordance-table.awk \
            scripts/metrics-table.awk scripts/phantom-truth.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end \
-           python/tortuosity/__init__.py
+           python/tortuosity.py
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
 build/src/%: paper.nw | $(TOOLS_build)
@@ -135,10 +135,10 @@ $(SHARED_LIB): $(PIC_OBJ) | $(TOOLS_build)
 build/include/tortuosity.h: paper.nw | $(TOOLS_build)
 	@mkdir -p $(@D)
 	notangle -R'src/tortuosity.h' paper.nw | cpif $@
-# The Python package, pure Python over the shared library (ctypes; numpy from Debian).
-build/python/tortuosity/__init__.py: paper.nw | $(TOOLS_build)
+# The Python module, pure Python over the shared library (ctypes; numpy from Debian).
+build/python/tortuosity.py: paper.nw | $(TOOLS_build)
 	@mkdir -p $(@D)
-	notangle -R'python/tortuosity/__init__.py' paper.nw | cpif $@
+	notangle -R'python/tortuosity.py' paper.nw | cpif $@
 
 PREFIX  ?= /usr/local
 DESTDIR ?=
@@ -161,10 +161,10 @@ build/tortuosity.1: paper.nw bin/tortuosity build/scripts/man-commands.awk | $(T
 .PHONY: install uninstall
 INSTALLED := bin/tortuosity lib/libtortuosity.a lib/libtortuosity.so.$(VERSION) lib/libtortuosity.so.$(SOVERSION) \
              lib/libtortuosity.so include/tortuosity.h lib/pkgconfig/tortuosity.pc share/man/man1/tortuosity.1 \
-             $(PYTHON_DIR)/tortuosity/__init__.py
+             $(PYTHON_DIR)/tortuosity.py
 install: bin/tortuosity build/lib/libtortuosity.a $(SHARED_LIB) build/include/tortuosity.h build/tortuosity.pc \
-    build/tortuosity.1 build/python/tortuosity/__init__.py
-	install -d '$(DESTDIR)$(PREFIX)'/{bin,lib/pkgconfig,include,share/man/man1,$(PYTHON_DIR)/tortuosity}
+    build/tortuosity.1 build/python/tortuosity.py
+	install -d '$(DESTDIR)$(PREFIX)'/{bin,lib/pkgconfig,include,share/man/man1,$(PYTHON_DIR)}
 	install -m 755 bin/tortuosity '$(DESTDIR)$(PREFIX)/bin/'
 	install -m 644 build/lib/libtortuosity.a $(SHARED_LIB) '$(DESTDIR)$(PREFIX)/lib/'
 	ln -sf libtortuosity.so.$(VERSION) '$(DESTDIR)$(PREFIX)/lib/libtortuosity.so.$(SOVERSION)'
@@ -172,10 +172,9 @@ install: bin/tortuosity build/lib/libtortuosity.a $(SHARED_LIB) build/include/to
 	install -m 644 build/include/tortuosity.h '$(DESTDIR)$(PREFIX)/include/'
 	install -m 644 build/tortuosity.pc '$(DESTDIR)$(PREFIX)/lib/pkgconfig/'
 	install -m 644 build/tortuosity.1 '$(DESTDIR)$(PREFIX)/share/man/man1/'
-	install -m 644 build/python/tortuosity/__init__.py '$(DESTDIR)$(PREFIX)/$(PYTHON_DIR)/tortuosity/'
+	install -m 644 build/python/tortuosity.py '$(DESTDIR)$(PREFIX)/$(PYTHON_DIR)/'
 uninstall:
 	rm -f $(addprefix '$(DESTDIR)$(PREFIX)'/,$(INSTALLED))
-	-rmdir '$(DESTDIR)$(PREFIX)/$(PYTHON_DIR)/tortuosity' 2>/dev/null
 
 # ---------------------------------------------------------------- the experiment grid
 # Declared once; passed to the program, to R and to gnuplot.
@@ -508,7 +507,7 @@ check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh build/scrip
 	@DATA_DIR='$(DATA_DIR)' REPO='$(CURDIR)' bash tests/end-to-end.sh bin/tortuosity | tee build/end-to-end.log
 	@echo "== reliability checks (tests/)"
 	@bash tests/reliability.sh bin/tortuosity | tee build/reliability.log
-	@echo "== the Python package, installed into build/check-prefix (tests/)"
+	@echo "== the Python module, installed into build/check-prefix (tests/)"
 	@rm -rf build/check-prefix && $(MAKE) -s install PREFIX='$(CURDIR)/build/check-prefix' >build/check-install.log
 	@PYTHONPATH=build/check-prefix/$(PYTHON_DIR) /usr/bin/python3 tests/python-api.py bin/tortuosity \
 	  | tee build/python-api.log

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The Python package against analytic curves and against the command line.
+"""The Python module against analytic curves and against the command line.
 
 Usage: PYTHONPATH=PREFIX/lib/python3/dist-packages /usr/bin/python3 tests/python-api.py bin/tortuosity
 (Debian's python3, whose numpy the test stage installs)
