@@ -44,7 +44,7 @@ CFLAGS  += -std=c11 -D_GNU_SOURCE -Wall -Wextra -fopenmp -pthread -fno-math-errn
 # HDF5's paths come from pkg-config once the build tools are installed (hence '=').
 HDF5_CFLAGS = $(shell pkg-config --cflags hdf5)
 HDF5_LIBS   = $(shell pkg-config --libs hdf5)
-LDLIBS   = -lgsl -lgslcblas -lexpat -lz -lcrypto $(HDF5_LIBS) -lm
+LDLIBS   = -lgsl -lgslcblas -lexpat -ljansson -lz -lcrypto $(HDF5_LIBS) -lm
 
 # ---------------------------------------------------------------- the program
 .PHONY: all
@@ -559,12 +559,20 @@ build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(TOOLS_
 	  -DFUZZ_FORMAT='"$*"' -Ibuild/src $(HDF5_CFLAGS) -o $@ $< $(LIB_SOURCES) $(LDLIBS)
 
 # Seeds: the first bytes (up to the longest input) of up to twelve real files of the format.
-# Shell globs, so that names with spaces stay whole. Plain text and legacy VTK, which the data
-# do not have, are seeded below.
+# Shell globs, so that names with spaces stay whole. Plain text, legacy VTK, Slicer markups and
+# ITK tubes, which the data do not have, are seeded below.
 build/fuzz/corpus-vtk/.seeded: bin/tortuosity | $(TOOLS_test)
 	@mkdir -p $(@D)
 	/usr/bin/python3 tests/vtk-fixtures.py bin/tortuosity build/fuzz/vtk-fixtures >/dev/null
 	cp build/fuzz/vtk-fixtures/legacy-*.vtk $(@D)/
+	@touch $@
+# Slicer markups and ITK tubes: the test's fixtures, written as those programs write them.
+SEED_FIXTURES_mrk := mrk.json
+SEED_FIXTURES_tre := tre
+build/fuzz/corpus-mrk/.seeded build/fuzz/corpus-tre/.seeded: build/fuzz/corpus-%/.seeded: | $(TOOLS_test)
+	@mkdir -p $(@D)
+	/usr/bin/python3 tests/slicer-itk-fixtures.py build/fuzz/slicer-itk >/dev/null
+	cp build/fuzz/slicer-itk/*.$(SEED_FIXTURES_$*) $(@D)/
 	@touch $@
 build/fuzz/corpus-text/.seeded: bin/tortuosity
 	@mkdir -p $(@D)
@@ -587,10 +595,12 @@ build/fuzz/%.log: build/fuzz/fuzz-% build/fuzz/corpus-%/.seeded
 	@mv $@.tmp $@
 	@grep -E 'stat::number_of_executed_units|stat::peak_rss_mb' $@ | sed "s/^/fuzz $*: /"
 
+# The logs, one per row of the format table (expanded when the recipe runs, after bin/tortuosity).
+FUZZ_LOGS = $(shell ./bin/tortuosity --list-formats 2>/dev/null | awk -F'\t' 'NR > 1 { print "build/fuzz/" $$1 ".log" }')
 .PHONY: fuzz
 fuzz: bin/tortuosity | $(TOOLS_build)
-	@logs=$$(./bin/tortuosity --list-formats | awk -F'\t' 'NR > 1 { print "build/fuzz/" $$1 ".log" }'); \
-	rm -f $$logs; $(MAKE) --no-print-directory $$logs
+	@rm -f $(FUZZ_LOGS)
+	@$(if $(FUZZ_LOGS),$(MAKE) --no-print-directory $(FUZZ_LOGS))
 
 # ---------------------------------------------------------------- sharded runs
 # One metrics run split into SHARDS parts by --shard, run by GNU parallel on JOBS local slots
@@ -692,7 +702,7 @@ clean:
 # it prints the one apt-get line to run) and is remade when this Makefile changes. Every stage has
 # the build stage's packages too. 'make lint' checks that each program, Python module and LaTeX
 # package a recipe or test uses comes from its stage's packages (scripts/tools-lint.sh).
-PACKAGES_build    := make gcc libc6-dev binutils git noweb libgsl-dev libexpat1-dev zlib1g-dev libssl-dev \
+PACKAGES_build    := make gcc libc6-dev binutils git noweb libgsl-dev libexpat1-dev libjansson-dev zlib1g-dev libssl-dev \
                      libhdf5-dev pkg-config
 PACKAGES_report   := gnuplot-nox r-base-core texlive-latex-base texlive-latex-recommended \
                      texlive-fonts-recommended lmodern poppler-utils

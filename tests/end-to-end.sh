@@ -410,6 +410,12 @@ if "$PYTHON" -c 'import vtk' 2>/dev/null; then
              || { grep FAIL '$work/vmtk-branches.log'; exit 1; }"
 fi
 
+if "$PYTHON" -c 'import numpy' 2>/dev/null; then
+  check "3D Slicer markups (LPS, RAS) and ITK/TubeTK tubes (ITK 5 and 4, transforms, parents, binary): the plain text's vessels; bad files refused" \
+    bash -c "'$PYTHON' '$(dirname "${BASH_SOURCE[0]}")/slicer-itk-check.py' '$T' '$work/slicer-itk' >'$work/slicer-itk.log' \
+             || { grep FAIL '$work/slicer-itk.log'; exit 1; }"
+fi
+
 if "$PYTHON" -c 'import h5py' 2>/dev/null; then
   check "HDF5 graph: chains joined, branches, merges and a cycle apart; a bad link refused" \
     bash -c "'$PYTHON' '$(dirname "${BASH_SOURCE[0]}")/hdf5-network.py' '$T' '$work/hdf5' >/dev/null"
