@@ -139,6 +139,9 @@ def test_errors():
         (lambda: tortuosity.measure(helix(), degree=9), tortuosity.Error, "degree"),
         (lambda: tortuosity.measure(helix(), colour="red"), TypeError, "colour"),
         (lambda: tortuosity.read(os.path.join(work, "two.txt"), format="nope"), tortuosity.Error, "format"),
+        (lambda: tortuosity.measure(helix(), segments=2**32 + 5), tortuosity.Error, "segments"),
+        (lambda: tortuosity.measure(helix(), degree=4.5), tortuosity.Error, "degree"),
+        (lambda: tortuosity.read(os.path.join(work, "two.txt") + "\0junk"), ValueError, "null byte"),
     )
     for call, kind, words in expected:
         try:

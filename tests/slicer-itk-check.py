@@ -75,8 +75,15 @@ bad = {
                           "position is not 3 numbers"),
     "loop.tre": ("ObjectType = Tube\nNDims = 3\nID = 1\nParentID = 2\nPointDim = x y z r\nNPoints = 2\nPoints = \n"
                  "0 0 0 1\n1 0 0 1\nObjectType = Group\nNDims = 3\nID = 2\nParentID = 1\n", "loop"),
-    "short.tre": ("ObjectType = Tube\nNDims = 3\nPointDim = x y z r\nNPoints = 3\nPoints = \n0 0 0 1\n1 0 0\n",
-                  "short.tre:7: expected 4 values"),
+    "short.tre": ("ObjectType = Tube\nNDims = 3\nPointDim = x y z r\nNPoints = 2\nPoints = \n0 0 0 1\n1 0 0\n"
+                  "2 0 0 1\n3 0 0 1\n", "short.tre:7: expected 4 values"),
+    "few.tre": ("ObjectType = Tube\nNDims = 3\nPointDim = x y z r\nNPoints = 100\nPoints = \n0 0 0 1\n",
+                "the file ends before"),
+    "twice.tre": ("ObjectType = Tube\nNDims = 3\nPointDim = x y z r\nNPoints = 1\nPoints = \n0 0 0 1\n"
+                  "Points = \n0 0 0 1\n", "a second Points block"),
+    "msb.tre": ("ObjectType = Tube\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = True\n", "big-endian"),
+    "extra.tre": ("ObjectType = Tube\nNDims = 3\nPointDim = x y z r\nNPoints = 1\nPoints = \n0 0 0 1\n"
+                  "1 0 0 1\n", "extra.tre:7: a point after the NPoints points"),
     "noxyz.tre": ("ObjectType = Tube\nNDims = 3\nPointDim = a b c\nNPoints = 1\nPoints = \n0 0 0\n", "no x, y and z"),
 }
 for name, (text, words) in bad.items():
