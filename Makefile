@@ -337,12 +337,11 @@ build/results/truth/%.tsv: bin/tortuosity
 build/results/phantom-truth.tsv: build/scripts/phantom-truth.awk $(foreach s,$(SHAPES),build/results/truth/$(s).tsv)
 	awk -f $< $(filter %.tsv,$^) >$@.tmp && mv $@.tmp $@
 
-# One coronary centerline, sample by sample, for the profile figure: profile-RATE[-rotation].tsv.
-# It is vessel 1 of the dataset's FUMPE file, named here: the manifest's pattern also matches the
-# orCaScore file, which sorts first. Its folder is the manifest's.
-PROFILE_DATASET = coronary-ct
-PROFILE_FILE    = centerlines.npy
-PROFILE_INPUT   = $(DATA_DIR)/$(dir $(call manifest_value,$(PROFILE_DATASET),2))$(PROFILE_FILE)
+# One centerline, sample by sample, for the profile figure: profile-RATE[-rotation].tsv. It is
+# vessel 1 of the file the manifest's profile column names, in its dataset's folder (the coronary
+# FUMPE file: the pattern also matches the orCaScore file, which sorts first).
+PROFILE_DATASET := $(shell awk -F'\t' 'NR > 1 && $$11 != "-" { print $$1; exit }' data/manifest.tsv)
+PROFILE_INPUT    = $(DATA_DIR)/$(dir $(call manifest_value,$(PROFILE_DATASET),2))$(call manifest_value,$(PROFILE_DATASET),11)
 PROFILE_OPTIONS = --vessel 1 $(call read_options,$(PROFILE_DATASET))
 PROFILE_NEEDS   = data/manifest.tsv bin/tortuosity build/data/$(PROFILE_DATASET).sha256
 # The same centerline with Bullitt's filter (the paper's Figure 5).
