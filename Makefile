@@ -5,7 +5,9 @@
 #   make reproduce    data -> results/ -> figures/ -> build/paper.pdf
 #   make report       build/paper.pdf (runs whatever results it needs)
 #   make paper        build/paper.pdf from the committed results/ and figures/ (no data needed)
-#   make bench        timing of the full BraVa set (median of BENCH_RUNS runs, 1 and 2 threads)
+#   make bench        timing of the full BraVa set (median of BENCH_RUNS runs, 1 and 2 threads);
+#                     BENCH_BASELINE=old/tortuosity: the ratio to an older build, run by run
+#   make bench-shards what one shard of 8 costs against the whole run
 #   make bench-stages where its time goes, stage by stage (perf)
 #   make memory       peak memory of metrics on 10^4, 10^5 and 10^6 vessels
 #   make install      program, library, header, pkg-config file and manual page under PREFIX
@@ -657,6 +659,7 @@ bench: bin/tortuosity
 	           END { printf "%.2f", NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2 }') s"; \
 	done; \
 	echo "bench: all $$((2 * $(BENCH_RUNS))) runs gave the same bytes"
+	@$(if $(BENCH_BASELINE),$(bench_against_baseline))
 	@awk -v n=$(BENCH_SEGMENTS) 'BEGIN { srand(1); for (i = 0; i < n; i++) { for (k = 0; k < 10; k++) \
 	    printf "%.4f %.4f %.4f\n", 2 * cos(0.3 * k) + 0.05 * rand(), 2 * sin(0.3 * k) + 0.05 * rand(), \
 	           0.3 * k + 0.05 * rand(); print "" } }' >build/bench-segments.txt
@@ -667,6 +670,42 @@ bench: bin/tortuosity
 	  printf "bench: %d ten-point segments, 2 threads: %.2f s (%.3f core-ms each); 10^7 segments: %.0f core-s," \
 	         " %.1f min on 8 machines of 2 cores\n", n, s, 1e3 * core, 1e7 * core, 1e7 * core / 16 / 60 }'
 	@rm -f build/bench-run.tsv build/bench-segments.txt
+
+# With BENCH_BASELINE=path/to/an/older/tortuosity: that program and this one in turn (A B A B) on
+# two threads, BENCH_RUNS pairs; each pair's ratio (this / baseline) and their median, and whether
+# the two give the same bytes.
+define bench_against_baseline
+ratios=; for r in $$(seq $(BENCH_RUNS)); do \
+  a=$$(date +%s.%N); $(subst ./bin/tortuosity,'$(BENCH_BASELINE)',$(BENCH_RUN)) --jobs 2 >build/bench-base.tsv; \
+  b=$$(date +%s.%N); $(BENCH_RUN) --jobs 2 >build/bench-run.tsv; c=$$(date +%s.%N); \
+  ratios="$$ratios $$(awk -v a=$$a -v b=$$b -v c=$$c 'BEGIN { printf "%.3f", (c - b) / (b - a) }')"; \
+done; \
+echo "bench: this / $(BENCH_BASELINE), 2 threads, pair by pair:$$ratios; median" \
+     "$$(printf '%s\n' $$ratios | sort -n | awk '{ t[NR] = $$1 } \
+         END { printf "%.3f", NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2 }')"; \
+cmp -s build/bench-base.tsv build/bench-run.tsv && echo "bench: the baseline gives the same bytes" \
+  || echo "bench: the baseline gives other bytes (diff build/bench-base.tsv build/bench-run.tsv)"
+endef
+
+# What a shard costs: BENCH_SHARD_SEGMENTS generated ten-point segments measured whole, and shard 1
+# of 8 of them, on two threads (BENCH_RUNS runs each, medians); the shard should cost an eighth.
+BENCH_SHARD_SEGMENTS ?= 200000
+.PHONY: bench-shards
+bench-shards: bin/tortuosity
+	@awk -v n=$(BENCH_SHARD_SEGMENTS) 'BEGIN { srand(1); for (i = 0; i < n; i++) { for (k = 0; k < 10; k++) \
+	    printf "%.4f %.4f %.4f\n", 2 * cos(0.3 * k) + 0.05 * rand(), 2 * sin(0.3 * k) + 0.05 * rand(), \
+	           0.3 * k + 0.05 * rand(); print "" } }' >build/bench-shards.txt
+	@for what in whole 1/8; do times=; \
+	  for r in $$(seq $(BENCH_RUNS)); do \
+	    a=$$(date +%s.%N); ./bin/tortuosity metrics -q --jobs 2 --rates $(RATE_LIST) \
+	      $$([ $$what = whole ] || echo --shard $$what) build/bench-shards.txt >/dev/null; b=$$(date +%s.%N); \
+	    times="$$times $$(awk -v a=$$a -v b=$$b 'BEGIN { printf "%.2f", b - a }')"; \
+	  done; \
+	  echo "$$what $$(printf '%s\n' $$times | sort -n | awk '{ t[NR] = $$1 } \
+	         END { printf "%.2f", NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2 }')"; \
+	done | awk '{ m[$$1] = $$2 } END { printf "bench-shards: %d segments, 2 threads: whole %.2f s, shard 1 of 8 " \
+	         "%.2f s (%.3f of the whole)\n", $(BENCH_SHARD_SEGMENTS), m["whole"], m["1/8"], m["1/8"] / m["whole"] }'
+	@rm -f build/bench-shards.txt
 
 # Where one single-thread run of bench spends its time, stage by stage, per vessel and per output
 # sample: perf samples with their call stacks, each given to the innermost stage on its stack.
