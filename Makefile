@@ -32,6 +32,11 @@ TOOL_STAGES := build report test fuzz bench parallel
 $(foreach s,$(TOOL_STAGES),$(eval TOOLS_$(s) := build/.tools-$(s)))
 
 DATA_DIR ?= ../shared/data
+# Globs and sorts in byte order, whatever the caller's locale: its collation would reorder the
+# files of a dataset, so the rows of the results and the listing the data's digest is taken of.
+# (LC_ALL would override LC_COLLATE; the character set stays the caller's.)
+unexport LC_ALL
+export LC_COLLATE := C
 START_TIME := $(shell date +%s)
 export SOURCE_DATE_EPOCH ?= 1795305600
 

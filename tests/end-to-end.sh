@@ -131,6 +131,20 @@ PROGRAM
     }
     check "make stops at a data file whose sha256 differs from the manifest's, naming it" data_digest_checked
   fi
+
+  # A locale whose collation puts "centerlines.npy" before "ORCA_centerlines.npy" (German, built by
+  # make check) changes neither a dataset's digest nor the order of its files.
+  if [ -d "$DATA_DIR/fdenz-coronary" ] && [ -d "$REPO/build/locale/de_DE.UTF-8" ]; then
+    files_in_byte_order() {
+      LOCPATH="$REPO/build/locale" LC_ALL=de_DE.UTF-8 make -s -C "$REPO" build/data/coronary-ct.sha256 \
+        DATA_DIR="$(cd "$DATA_DIR" && pwd)" >"$work/locale.log" 2>&1 || { cat "$work/locale.log"; return 1; }
+      local shown
+      shown=$(cd "$DATA_DIR" && LOCPATH="$REPO/build/locale" LC_ALL=de_DE.UTF-8 bash -c \
+        'shopt -s nullglob; f=(fdenz-coronary/*centerlines.npy); echo "${f[0]}"')
+      [ "$shown" = fdenz-coronary/centerlines.npy ] || { echo "the German locale is not in effect: $shown"; return 1; }
+    }
+    check "a German locale's collation changes neither a dataset's digest nor the order of its files" files_in_byte_order
+  fi
 fi
 
 # ---------------------------------------------------------------- command line
