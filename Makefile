@@ -57,7 +57,8 @@ LDLIBS   = -lgsl -lgslcblas -lexpat -ljansson -lz -lcrypto $(HDF5_LIBS) -lm
 .PHONY: all
 all: bin/tortuosity
 
-MODULES := phantom pipeline pspline stencil metrics frenet study vessel decimal   # the method, in the order of paper.nw
+SHARED_MODULES := vessel decimal                  # what every part shares: the vessel, numbers as text
+MODULES := phantom pipeline pspline stencil metrics frenet study   # the method, in the order of paper.nw
 # The readers in layers (each calls only those before it): bytes as text, the shared layer, the
 # formats (one file each, src/format-NAME.c, found in paper.nw; their rows are in formats.h, and
 # VTK's two share vtk-data), the table and dispatch.
@@ -67,11 +68,11 @@ API_MODULES    := tortuosity                      # the library's public interfa
 # The command line by job (each calls only those before it): text buffers, atomic output and
 # provenance, the table and VTK writers, the stream of windows and shards, the commands.
 CLI_MODULES    := textbuf output writers stream cli
-HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES) $(READER_MODULES) $(CLI_MODULES)))
-LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)))
+LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
 CLI_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(CLI_MODULES)))
-C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(MODULES) $(READER_MODULES) $(CLI_MODULES)) \
-             $(addsuffix .c,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES) $(CLI_MODULES)) \
+C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)) \
+             $(addsuffix .c,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES) $(CLI_MODULES)) \
              unit-tests.c fuzz-readers.c)
 SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
@@ -127,7 +128,7 @@ build/lib/libtortuosity.a: $(LIB_OBJ) | $(TOOLS_build)
 # the tort_ names global. Its soname changes when tortuosity.h changes incompatibly.
 SOVERSION := 1
 SHARED_LIB := build/lib/libtortuosity.so.$(VERSION)
-PIC_OBJ := $(addprefix build/pic/,$(addsuffix .o,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+PIC_OBJ := $(addprefix build/pic/,$(addsuffix .o,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
 build/pic/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -fPIC -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
@@ -404,10 +405,10 @@ build/metrics-table.tex: bin/tortuosity build/scripts/metrics-table.awk
 	./bin/tortuosity metrics --list-metrics | awk -F'\t' -f build/scripts/metrics-table.awk >$@.tmp && mv $@.tmp $@
 # Section 1's table of modules: the Makefile's lists, layer by layer, each module with the first
 # line of its header (or, for a format, of its file), which says its job.
-MODULE_LAYERS := method:geom~$(subst $(space),~,$(MODULES)) \
+MODULE_LAYERS := shared:geom~$(subst $(space),~,$(SHARED_MODULES)) method:$(subst $(space),~,$(MODULES)) \
                  reading:$(subst $(space),~,$(READER_MODULES) $(FORMAT_MODULES)) \
                  command~line:$(subst $(space),~,$(CLI_MODULES)) library:$(API_MODULES)
-build/modules.tex: build/scripts/modules.awk $(HEADERS) $(addprefix build/src/,$(addsuffix .c,$(FORMAT_MODULES)))
+build/modules.tex: build/scripts/modules.awk $(HEADERS) $(addprefix build/src/,$(addsuffix .c,$(FORMAT_MODULES))) Makefile
 	for layer in $(MODULE_LAYERS); do for m in $$(echo $${layer#*:} | tr '~' ' '); do \
 	  f=build/src/$$m.h; [ -f $$f ] || f=build/src/$$m.c; \
 	  printf '%s\t%s\t%s\t%s\n' "$$(echo $${layer%%:*} | tr '~' ' ')" $$m $$(basename $$f) "$$(grep -m1 '^/\* .* \*/$$' $$f)"; \
@@ -526,7 +527,7 @@ check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh build/scrip
 # end-to-end tests compare its output with bin/tortuosity's, byte for byte (REFERENCE).
 SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all \
              -DTORTUOSITY_BASELINE_ONLY
-SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
 SAN_CC     = $(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS)
 
 build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
@@ -556,7 +557,7 @@ check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity bin/tortuosi
 # build/fuzz/. The formats, their seeds (shell globs under DATA_DIR) and their longest inputs are
 # the table's (tortuosity --list-formats): a new format is fuzzed without a line here.
 FUZZ_SECONDS ?= 150
-LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(MODULES) $(READER_MODULES) $(FORMAT_MODULES)))
+LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES)))
 format_field  = ./bin/tortuosity --list-formats | awk -F'\t' -v f='$(1)' '$$1 == f { print $$$(2) }'
 
 build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(TOOLS_fuzz)

@@ -52,7 +52,7 @@ if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
     printf 'int b(int);\nint a(int x) { return x ? b(x - 1) : 0; }\n' >build/src/a.c
     { printf 'int a(int);\nint b(int x) { return a(x);\n'; for i in $(seq 1000); do echo; done; echo '}'; } >build/src/b.c
     cc -c -o a.o build/src/a.c && cc -c -o b.o build/src/b.c || { cd - >/dev/null; return 1; }
-    { echo '<<long>>='; seq 121; echo '@'; echo '<<short>>='; seq 120; echo '@'; } >doc.nw
+    { echo '<<long>>='; seq 121; echo '<<next>>='; seq 2; echo '@'; echo '<<short>>='; seq 120; echo '@'; } >doc.nw
     ! bash "$REPO/build/scripts/structure.sh" doc.nw a.o b.o >out.txt 2>&1
     local failed=$?
     cd - >/dev/null
