@@ -10,6 +10,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import warnings
 
 import numpy as np
 
@@ -128,7 +129,12 @@ def test_read_formats():
     with open(csv, "w") as f:
         f.write("id,X,Y,Z\n" + "".join("a,%g,%g,%g\n" % (1000 * x, 1000 * y, 1000 * z) for x, y, z in helix(6)))
     (label, v), = tortuosity.read(csv, units="um", columns="X,Y,Z")
-    return None if np.allclose(v, helix(6)) else "CSV in micrometres: %s" % v[:2]
+    if not np.allclose(v, helix(6)):
+        return "CSV in micrometres: %s" % v[:2]
+    with warnings.catch_warnings(record=True) as caught:             # the reader's warning, as Python's
+        warnings.simplefilter("always")
+        tortuosity.read(path, columns="x,y,z")
+    return None if any("--columns" in str(w.message) for w in caught) else "no warning: %s" % caught
 
 
 def test_errors():
@@ -162,7 +168,8 @@ check("profile of a helix: kappa 0.2/mm, tau 0.1/mm, a unit tangent normal to N,
       test_helix_profile)
 check("measure a semicircle phantom of radius 1 mm: AC 1/mm, TT 0", test_semicircle_measure)
 check("measure and profile give the command line's numbers, with the fit's options", test_same_as_command_line)
-check("read: text with and without radii, CSV in micrometres with named columns", test_read_formats)
+check("read: text with and without radii, CSV in micrometres with named columns, the reader's warning",
+      test_read_formats)
 check("errors are exceptions with the library's message; a two-point vessel has a length, a status and NaN",
       test_errors)
 print("python: %d passed, %d failed" % (passed, failed))
