@@ -298,6 +298,21 @@ shards_join_to_whole() {   # shards_join_to_whole N: N shards, joined with the h
 }
 check "--shard: shards 1..4 joined are the unsharded output, byte for byte" shards_join_to_whole 4
 check "--shard: shards 1..7 joined (more shards than helices per file) likewise" shards_join_to_whole 7
+shard_stops_early() {   # shard 1 of 4 stops reading after its vessels: both files still in its provenance
+  local inputs
+  inputs=$(awk -F'\t' '$1 == "input" { print $2, $3, $4 }' "$work/shard-4-of-4.tsv.provenance.tsv")
+  [ "$(printf '%s\n' "$inputs" | wc -l)" = 2 ] || return 1
+  [ "$inputs" = "$(awk -F'\t' '$1 == "input" { print $2, $3, $4 }' "$work/shard-1-of-4.tsv.provenance.tsv")" ] \
+    || return 1
+  # a later file whose third vessel is malformed: shard 1 never reaches it, the whole run and shard 4 do
+  { printf '0 0 0\n1 0 0\n2 1 0\n\n0 0 1\n1 0 1\n2 1 1\n\n0 0 2\n1 x 2\n'; } >"$work/shard-bad.txt"
+  "$T" metrics -q --shard 1/4 -o "$work/shard-early.tsv" "$work/shard-a.txt" "$work/shard-bad.txt" || return 1
+  awk -F'\t' '$1 == "input"' "$work/shard-early.tsv.provenance.tsv" | grep -q shard-bad.txt || return 1
+  "$T" metrics -q --shard 4/4 "$work/shard-a.txt" "$work/shard-bad.txt" >/dev/null 2>&1; [ $? = 2 ] || return 1
+  "$T" metrics -q "$work/shard-a.txt" "$work/shard-bad.txt" >/dev/null 2>&1; [ $? = 2 ]
+}
+check "--shard: shard 1 of 4 reads no further than its vessels (a later file's error is the later shards'); its provenance names every input, as shard 4's" \
+  shard_stops_early
 sufficient_shards() {
   "$T" phantom --shape helix --count 12 --seed 9 --sigma 0.02 | awk 'NF { print $0, 0.3; next } { print }' \
     >"$work/radii12.txt"
