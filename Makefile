@@ -9,7 +9,8 @@
 #                     BENCH_BASELINE=old/tortuosity: the ratio to an older build, run by run
 #   make bench-shards what one shard of 8 costs against the whole run
 #   make bench-stages where its time goes, stage by stage (perf)
-#   make memory       peak memory of metrics on 10^4, 10^5 and 10^6 vessels
+#   make memory       peak memory of metrics on 10^4, 10^5 and 10^6 vessels, and of one
+#                     vessel of 10^6 points at 100X
 #   make install      program, library, header, pkg-config file and manual page under PREFIX
 #                     (default /usr/local; DESTDIR for staging)
 #   make check-sanitize   the tests under AddressSanitizer and UndefinedBehaviorSanitizer
@@ -725,8 +726,13 @@ bench-stages: bin/tortuosity build/scripts/bench-stages.awk | $(TOOLS_bench)
 	@rm -f build/bench-stages.data
 
 # Peak memory of metrics on 10^4, 10^5 and 10^6 two-point vessels (one text file each): it should
-# stay flat, set by one file's bytes and one window of vessels, not by their number.
+# stay flat, set by one file's bytes and one window of vessels, not by their number. Then one vessel
+# of 10^6 points (three turns of a helix of radius 5 mm and pitch 10 mm: curvature 0.1816 and torsion
+# 0.0578 per mm) at the four rates, 10^8 samples at 100X: measured in pieces, it must be ok at every
+# rate within MEMORY_LONG_LIMIT_KB.
 MEMORY_SIZES := 10000 100000 1000000
+MEMORY_LONG_POINTS := 1000000
+MEMORY_LONG_LIMIT_KB := 524288
 .PHONY: memory
 memory: bin/tortuosity | $(TOOLS_bench)
 	@for n in $(MEMORY_SIZES); do \
@@ -734,6 +740,19 @@ memory: bin/tortuosity | $(TOOLS_bench)
 	  /usr/bin/time -f "memory: $$n two-point vessels: peak RSS %M KB, %e s" \
 	    ./bin/tortuosity metrics -q --rates $(RATE_LIST) -o build/memory-$$n.tsv build/memory-$$n.txt; \
 	done; rm -f build/memory-*.txt build/memory-*.tsv*
+	@awk -v n=$(MEMORY_LONG_POINTS) 'BEGIN { pi = atan2(0, -1); for (i = 0; i < n; i++) { \
+	    t = 6 * pi * i / (n - 1); printf "%.6f %.6f %.6f\n", 5 * cos(t), 5 * sin(t), 10 * t / (2 * pi) } }' \
+	  >build/memory-long.txt
+	@/usr/bin/time -f "%M %e" -o build/memory-long.time \
+	  ./bin/tortuosity metrics -q --rates $(RATE_LIST) -o build/memory-long.tsv build/memory-long.txt
+	@awk -F'\t' -v limit=$(MEMORY_LONG_LIMIT_KB) -v points=$(MEMORY_LONG_POINTS) \
+	  'FILENAME ~ /time$$/ { split($$0, t, " "); rss = t[1]; secs = t[2]; next } FNR == 1 { for (i = 1; i <= NF; i++) col[$$i] = i; next } \
+	   { rows = rows sprintf(" %sX %s samples AC %s AT %s %s;", $$col["rate"], $$col["n"], $$col["AC"], \
+	                         $$col["AT"], $$col["status"]); bad += $$col["status"] != "ok" } \
+	   END { printf "memory: one vessel of %d points:%s peak RSS %d KB, %.1f s\n", points, rows, rss, secs; \
+	         if (bad || rss > limit) { print "memory: over " limit " KB, or a status not ok"; exit 1 } }' \
+	  build/memory-long.time build/memory-long.tsv
+	@rm -f build/memory-long.*
 
 .PHONY: clean
 clean:
