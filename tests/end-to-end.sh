@@ -239,6 +239,21 @@ uncertainty_columns() {
 check "metrics --uncertainty: M_se beside each metric, filled where defined, the metrics unchanged" uncertainty_columns
 check "metrics --uncertainty -o x.vtp: exit 2" bash -c \
   "'$T' metrics -q --uncertainty -o '$work/se.vtp' '$work/noisy-helix.txt' 2>/dev/null; [ \$? -eq 2 ]"
+# A long vessel: 11,000 points of the helix at 100X are 1.1 million samples, more than are measured
+# whole (2^20), so they are measured in pieces: ok, the helix's curvature 0.2 and torsion 0.1 per mm,
+# and the same bytes from one thread and from two (with a short vessel beside it).
+long_vessel_in_pieces() {
+  { "$T" phantom --shape helix --points 11000; echo; "$T" phantom --shape helix; } >"$work/long.txt" || return 1
+  "$T" metrics -q --rates 100 --jobs 1 "$work/long.txt" >"$work/long-1.tsv" || return 1
+  "$T" metrics -q --rates 100 --jobs 2 "$work/long.txt" >"$work/long-2.tsv" || return 1
+  cmp "$work/long-1.tsv" "$work/long-2.tsv" || return 1
+  awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next } NR == 2 {
+      d1 = $c["AC"] - 0.2; d2 = $c["AT"] - 0.1
+      ok = $c["status"] == "ok" && $c["n"] == 1100000 && d1 * d1 < 1e-12 && d2 * d2 < 1e-12 }
+    END { exit !(ok && NR == 3) }' "$work/long-1.tsv" || { cut -f5,12,13,37 "$work/long-1.tsv"; return 1; }
+}
+check "metrics: a vessel of 1.1 million samples is measured in pieces, ok, with the helix's curvature and torsion" \
+  long_vessel_in_pieces
 study_threads() {   # the summary of a cell does not depend on the number of threads
   "$T" phantom-study --shape salkowski --sigma 0.01 --count 60 --jobs 1 -o "$work/study-1.tsv" || return 1
   "$T" phantom-study --shape salkowski --sigma 0.01 --count 60 --jobs 3 -o "$work/study-3.tsv" || return 1
