@@ -75,7 +75,7 @@ CLI_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(CLI_MODULES)))
 C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)) \
              $(addsuffix .c,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES) $(CLI_MODULES)) \
              unit-tests.c fuzz-readers.c)
-SCRIPTS := scripts/analysis.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
+SCRIPTS := scripts/analysis.R scripts/phantom-tables.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
            scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk \
@@ -365,39 +365,62 @@ build/results/profile-%.tsv: $(PROFILE_NEEDS)
 	./bin/tortuosity profile -q --rate $* $(PROFILE_OPTIONS) -o $@ '$(PROFILE_INPUT)'
 
 # ---------------------------------------------------------------- results -> tables
-# Small summaries, committed. R writes into a scratch folder; the files are moved into place.
-RESULT_TABLES := results/phantom-table.tex results/phantom-paper-tables.tex results/fit-table.tex results/noise-table.tex results/recon-table.tex \
-                 results/recon-length-table.tex results/soa-acct-table.tex results/correlation.tex \
-                 results/sufficient-table.tex results/data-tables.tex results/numbers.tex
-RESULT_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
-                 results/phantom-sensitivity.tsv results/phantom-reading.tsv results/recon-error.tsv \
-                 results/recon-length.tsv results/percent-shift.tsv results/percent-shift-null.tsv \
-                 results/fits.tsv results/noise.tsv results/soa-acct.tsv results/correlation.tsv \
-                 results/correlation-influence.tsv results/sufficient.tsv \
-                 results/territories.tsv results/oflynn-table.tsv results/vorobtsova-table.tsv
-SOA_POINTS    := build/results/soa-acct-points.tsv
-SUMMARY_TMP   := build/results/summary.tmp
+# Small summaries, committed. Two R scripts, each writing into a scratch folder of its own, whose
+# files are moved into place: the data's tables (analysis.R) and the phantom study's
+# (phantom-tables.R). The data's come first in every list, so that make -j2 makes them as soon as
+# the data are measured, beside the phantom study; only the short phantom script waits for it.
+DATA_TABLES    := results/fit-table.tex results/noise-table.tex results/recon-table.tex \
+                  results/recon-length-table.tex results/soa-acct-table.tex results/correlation.tex \
+                  results/sufficient-table.tex results/data-tables.tex
+DATA_TSVS      := results/recon-error.tsv results/recon-length.tsv results/percent-shift.tsv \
+                  results/percent-shift-null.tsv results/fits.tsv results/noise.tsv results/soa-acct.tsv \
+                  results/correlation.tsv results/correlation-influence.tsv results/sufficient.tsv \
+                  results/territories.tsv results/oflynn-table.tsv results/vorobtsova-table.tsv
+PHANTOM_TABLES := results/phantom-table.tex results/phantom-paper-tables.tex
+PHANTOM_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
+                  results/phantom-sensitivity.tsv results/phantom-reading.tsv
+RESULT_TABLES  := $(DATA_TABLES) $(PHANTOM_TABLES) results/numbers.tex
+RESULT_TSVS    := $(DATA_TSVS) $(PHANTOM_TSVS)
+SOA_POINTS     := build/results/soa-acct-points.tsv
+SUMMARY_TMP    := build/results/summary.tmp
+PHANTOM_TMP    := build/results/phantom-tables.tmp
+# What both scripts are told: the grid.
+R_GRID = rates='$(RATES)' variants='$(VARIANTS)' variant_names='$(VARIANT_NAMES)' integrators='$(INTEGRATORS)' \
+         shapes='$(SHAPES)'
 
-$(RESULT_TABLES) $(RESULT_TSVS) $(SOA_POINTS) &: build/scripts/analysis.R $(RUNS) $(NOISE_RUNS) $(SUFFICIENT) $(DENSITY_RUNS) \
-    $(foreach r,$(PROFILE_RATES),build/results/profile-$(r).tsv build/results/profile-$(r)-rotation.tsv) \
-    results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv build/results/phantom-truth.tsv | $(TOOLS_report)
+# The measurements of the data that the data's tables summarise.
+DATA_MEASUREMENTS := $(RUNS) $(NOISE_RUNS) $(SUFFICIENT) $(DENSITY_RUNS) \
+                     $(foreach r,$(PROFILE_RATES),build/results/profile-$(r).tsv build/results/profile-$(r)-rotation.tsv)
+
+$(DATA_TABLES) $(DATA_TSVS) $(SOA_POINTS) build/results/numbers-data.tex &: build/scripts/analysis.R \
+    $(DATA_MEASUREMENTS) | $(TOOLS_report)
 	@rm -rf $(SUMMARY_TMP) && mkdir -p $(SUMMARY_TMP) results
-	Rscript --vanilla build/scripts/analysis.R in=build/results out=$(SUMMARY_TMP) points=$(SOA_POINTS).tmp \
-	  rates='$(RATES)' variants='$(VARIANTS)' variant_names='$(VARIANT_NAMES)' integrators='$(INTEGRATORS)' \
-	  shapes='$(SHAPES)' \
-	  radii='$(RADII_DATASETS)' shift_metrics='$(SHIFT_METRICS)' densities='$(DENSITIES)' \
-	  readings='$(READINGS)' paper_sigmas='$(PAPER_SIGMAS)' paper_densities='$(PAPER_DENSITIES)' \
+	Rscript --vanilla build/scripts/analysis.R in=build/results out=$(SUMMARY_TMP) points=$(SOA_POINTS).tmp $(R_GRID) \
+	  radii='$(RADII_DATASETS)' shift_metrics='$(SHIFT_METRICS)' paper_densities='$(PAPER_DENSITIES)' \
 	  profile_rates='$(PROFILE_RATES)' noise_readings='$(NOISE_READINGS)' noise_twins='$(NOISE_TWINS)'
 	@mv $(SOA_POINTS).tmp $(SOA_POINTS)
-	@mv $(addprefix $(SUMMARY_TMP)/,$(notdir $(RESULT_TABLES) $(RESULT_TSVS))) results/
+	@mv $(addprefix $(SUMMARY_TMP)/,$(notdir $(DATA_TABLES) $(DATA_TSVS))) results/
+	@mv $(SUMMARY_TMP)/numbers.tex build/results/numbers-data.tex
+
+$(PHANTOM_TABLES) $(PHANTOM_TSVS) build/results/numbers-phantoms.tex &: build/scripts/phantom-tables.R \
+    results/phantom-summary.tsv results/phantom-summary-paper-fit.tsv build/results/phantom-truth.tsv | $(TOOLS_report)
+	@rm -rf $(PHANTOM_TMP) && mkdir -p $(PHANTOM_TMP) results
+	Rscript --vanilla build/scripts/phantom-tables.R in=build/results out=$(PHANTOM_TMP) $(R_GRID) \
+	  densities='$(DENSITIES)' readings='$(READINGS)' paper_sigmas='$(PAPER_SIGMAS)'
+	@mv $(addprefix $(PHANTOM_TMP)/,$(notdir $(PHANTOM_TABLES) $(PHANTOM_TSVS))) results/
+	@mv $(PHANTOM_TMP)/numbers.tex build/results/numbers-phantoms.tex
+
+# The report's numbers, the phantoms' first.
+results/numbers.tex: build/results/numbers-phantoms.tex build/results/numbers-data.tex
+	cat $^ >$@.tmp && mv $@.tmp $@
 
 # The paper's tables and figures with their counterparts (report, near the start), from the
 # concordance chunk; 'make reproduce' checks that every file a row names exists.
 results/concordance.tsv: paper.nw build/scripts/concordance-tsv.awk | $(TOOLS_build)
 	@mkdir -p results
 	notangle -R'concordance' $< | awk -f build/scripts/concordance-tsv.awk >$@.tmp && mv $@.tmp $@
-check_concordance = awk -F'\t' 'NR > 1 && $$4 != "-" && system("test -f " $$4) { print "$<: " $$1 ": no file " $$4; \
-                      bad = 1 } END { exit bad }' $< >&2
+check_concordance = awk -F'\t' 'NR > 1 && $$4 != "-" && system("test -f " $$4) { print FILENAME ": " $$1 ": no file " $$4; \
+                      bad = 1 } END { exit bad }' results/concordance.tsv >&2
 build/concordance.tex: build/scripts/concordance-table.awk results/concordance.tsv
 	awk -F'\t' -f $^ >$@.tmp && mv $@.tmp $@
 
@@ -484,12 +507,21 @@ endef
 
 REPORT_INPUTS := build/paper.tex build/metrics-table.tex build/interfaces.tex build/concordance.tex build/modules.tex
 
-build/paper.pdf: $(REPORT_INPUTS) $(RESULT_TABLES) $(FIGURES) | $(TOOLS_report)
+# In this order, so that make -j2 draws the figures (all of the data) before the phantom study ends.
+build/paper.pdf: $(REPORT_INPUTS) $(DATA_TABLES) $(FIGURES) $(PHANTOM_TABLES) results/numbers.tex | $(TOOLS_report)
 	$(run_pdflatex)
 
 .PHONY: report reproduce paper
 report: build/paper.pdf
-reproduce: results/concordance.tsv build/paper.pdf $(FIGURE_PNGS)
+# In two steps: the data's measurements first, on every slot, then the rest. In one pass over the
+# prerequisites make starts every target it can as slots free, so the phantom study's 84 cells,
+# ready from the start, would take every slot before the data's tables could start; measured
+# first, the data's tables (R, one core) are made beside the phantom study.
+.PHONY: data-measurements
+data-measurements: $(DATA_MEASUREMENTS)
+reproduce:
+	@$(MAKE) --no-print-directory data-measurements
+	@$(MAKE) --no-print-directory results/concordance.tsv build/paper.pdf $(FIGURE_PNGS)
 	@$(check_concordance)
 	@echo "reproduce: the report is build/paper.pdf ($$(($$(date +%s) - $(START_TIME))) s)"
 
