@@ -261,10 +261,13 @@ $(RUNS): build/results/%.tsv: $(MEASURED)
 # Torsion or noise: every dataset and its null twins (straight, planar; on the dataset's own
 # precision, the manifest's last column), under the paper's torsion reading and under the
 # significant one: build/results/noise/READING/TWIN/DATASET.tsv, TWIN = data, straight or planar.
+# The data under the paper's reading are the backward-Euler runs above (the same options), not
+# measured twice: R reads those.
 NOISE_READINGS := paper significant
 NOISE_TWINS    := data straight planar
-NOISE_RUNS     := $(foreach r,$(NOISE_READINGS),$(foreach t,$(NOISE_TWINS),$(foreach d,$(DATASETS),\
-                    $(call cell,build/results/noise/$(r)/$(t)/$(d).tsv,NOISE_READING=$(r) NOISE_TWIN=$(t)))))
+NOISE_RUNS     := $(filter-out build/results/noise/paper/data/%,\
+                    $(foreach r,$(NOISE_READINGS),$(foreach t,$(NOISE_TWINS),$(foreach d,$(DATASETS),\
+                    $(call cell,build/results/noise/$(r)/$(t)/$(d).tsv,NOISE_READING=$(r) NOISE_TWIN=$(t))))))
 noise_twin      = $(if $(filter-out data,$(1)),--null $(1) --precision '$(call manifest_value,$(2),10)')
 $(NOISE_RUNS): build/results/noise/%.tsv: $(MEASURED)
 	$(call measure,$(*F),noise: $(*F)$(comma) $(NOISE_READING): $(NOISE_TWIN),metrics -q --rates $(RATE_LIST) \
