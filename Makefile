@@ -370,8 +370,8 @@ build/results/profile-%.tsv: $(PROFILE_NEEDS)
 # ---------------------------------------------------------------- results -> tables
 # Small summaries, committed. Two R scripts, each writing into a scratch folder of its own, whose
 # files are moved into place: the data's tables (analysis.R) and the phantom study's
-# (phantom-tables.R). The data's come first in every list, so that make -j2 makes them as soon as
-# the data are measured, beside the phantom study; only the short phantom script waits for it.
+# (phantom-tables.R). The data's need no phantom, so that make -j2 makes them beside the phantom
+# study (see reproduce); only the short phantom script waits for the study.
 DATA_TABLES    := results/fit-table.tex results/noise-table.tex results/recon-table.tex \
                   results/recon-length-table.tex results/soa-acct-table.tex results/correlation.tex \
                   results/sufficient-table.tex results/data-tables.tex
@@ -422,8 +422,8 @@ results/numbers.tex: build/results/numbers-phantoms.tex build/results/numbers-da
 results/concordance.tsv: paper.nw build/scripts/concordance-tsv.awk | $(TOOLS_build)
 	@mkdir -p results
 	notangle -R'concordance' $< | awk -f build/scripts/concordance-tsv.awk >$@.tmp && mv $@.tmp $@
-check_concordance = awk -F'\t' 'NR > 1 && $$4 != "-" && system("test -f " $$4) { print FILENAME ": " $$1 ": no file " $$4; \
-                      bad = 1 } END { exit bad }' results/concordance.tsv >&2
+check_concordance = awk -F'\t' 'NR > 1 && $$4 != "-" && system("test -f " $$4) { print "$<: " $$1 ": no file " $$4; \
+                      bad = 1 } END { exit bad }' $< >&2
 build/concordance.tex: build/scripts/concordance-table.awk results/concordance.tsv
 	awk -F'\t' -f $^ >$@.tmp && mv $@.tmp $@
 
