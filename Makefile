@@ -510,8 +510,7 @@ endef
 
 REPORT_INPUTS := build/paper.tex build/metrics-table.tex build/interfaces.tex build/concordance.tex build/modules.tex
 
-# In this order, so that make -j2 draws the figures (all of the data) before the phantom study ends.
-build/paper.pdf: $(REPORT_INPUTS) $(DATA_TABLES) $(FIGURES) $(PHANTOM_TABLES) results/numbers.tex | $(TOOLS_report)
+build/paper.pdf: $(REPORT_INPUTS) $(RESULT_TABLES) $(FIGURES) | $(TOOLS_report)
 	$(run_pdflatex)
 
 .PHONY: report reproduce paper
