@@ -728,24 +728,31 @@ cmp -s build/bench-base.tsv build/bench-run.tsv && echo "bench: the baseline giv
   || echo "bench: the baseline gives other bytes (diff build/bench-base.tsv build/bench-run.tsv)"
 endef
 
-# What a shard costs: BENCH_SHARD_SEGMENTS generated ten-point segments measured whole, and shard 1
-# of 8 of them, on two threads (BENCH_RUNS runs each, medians); the shard should cost an eighth.
+# What a shard costs: the whole run, and its first and last shard of 8, on two threads (BENCH_RUNS
+# runs each, medians), on BENCH_SHARD_SEGMENTS generated ten-point segments in one plain-text file
+# and on BraVa's SWC trees at the paper's rates; a shard should cost an eighth.
 BENCH_SHARD_SEGMENTS ?= 200000
 .PHONY: bench-shards
 bench-shards: bin/tortuosity
 	@awk -v n=$(BENCH_SHARD_SEGMENTS) 'BEGIN { srand(1); for (i = 0; i < n; i++) { for (k = 0; k < 10; k++) \
 	    printf "%.4f %.4f %.4f\n", 2 * cos(0.3 * k) + 0.05 * rand(), 2 * sin(0.3 * k) + 0.05 * rand(), \
 	           0.3 * k + 0.05 * rand(); print "" } }' >build/bench-shards.txt
-	@for what in whole 1/8; do times=; \
-	  for r in $$(seq $(BENCH_RUNS)); do \
-	    a=$$(date +%s.%N); ./bin/tortuosity metrics -q --jobs 2 --rates $(RATE_LIST) \
-	      $$([ $$what = whole ] || echo --shard $$what) build/bench-shards.txt >/dev/null; b=$$(date +%s.%N); \
-	    times="$$times $$(awk -v a=$$a -v b=$$b 'BEGIN { printf "%.2f", b - a }')"; \
+	@for input in text SWC; do \
+	  for what in whole 1/8 8/8; do times=; \
+	    for r in $$(seq $(BENCH_RUNS)); do \
+	      a=$$(date +%s.%N); ./bin/tortuosity metrics -q --jobs 2 --rates $(RATE_LIST) --units mm \
+	        $$([ $$what = whole ] || echo --shard $$what) \
+	        $$([ $$input = text ] && echo build/bench-shards.txt || echo $(BENCH_FILES)) >/dev/null; \
+	      b=$$(date +%s.%N); times="$$times $$(awk -v a=$$a -v b=$$b 'BEGIN { printf "%.2f", b - a }')"; \
+	    done; \
+	    echo "$$input $$what $$(printf '%s\n' $$times | sort -n | awk '{ t[NR] = $$1 } \
+	           END { printf "%.2f", NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2 }')"; \
 	  done; \
-	  echo "$$what $$(printf '%s\n' $$times | sort -n | awk '{ t[NR] = $$1 } \
-	         END { printf "%.2f", NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2 }')"; \
-	done | awk '{ m[$$1] = $$2 } END { printf "bench-shards: %d segments, 2 threads: whole %.2f s, shard 1 of 8 " \
-	         "%.2f s (%.3f of the whole)\n", $(BENCH_SHARD_SEGMENTS), m["whole"], m["1/8"], m["1/8"] / m["whole"] }'
+	done | awk '{ m[$$1, $$2] = $$3 } END { for (i = 1; i <= 2; i++) { f = i == 1 ? "text" : "SWC"; \
+	         printf "bench-shards: %s, 2 threads: whole %.2f s, shard 1 of 8 %.2f s (%.3f of the whole), " \
+	         "shard 8 of 8 %.2f s (%.3f)\n", i == 1 ? "$(BENCH_SHARD_SEGMENTS) ten-point segments in one text file" \
+	         : "BraVa'"'"'s $(words $(BENCH_FILES)) SWC trees", m[f, "whole"], m[f, "1/8"], m[f, "1/8"] / m[f, "whole"], \
+	         m[f, "8/8"], m[f, "8/8"] / m[f, "whole"] } }'
 	@rm -f build/bench-shards.txt
 
 # Where one single-thread run of bench spends its time, stage by stage, per vessel and per output

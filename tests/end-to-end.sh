@@ -336,6 +336,50 @@ sufficient_shards() {
   awk 'FNR > 1 || NR == 1' "$work"/suff-{1,2,3}.tsv | cmp - "$work/suff-all.tsv"
 }
 check "sufficient --shard: shards 1..3 joined are the unsharded output" sufficient_shards
+# SWC trees are counted from their ids and parents alone, and a shard leaves unread the files
+# that hold none of its vessels: mixed with plain text and CSV (counted by reading), the shards
+# still join to the whole, and their provenance names every input as the whole run's does.
+swc_tree() {   # swc_tree SEED TRUNK BRANCHES: a trunk, side branches of 15 nodes, and a lone root
+  awk -v seed="$1" -v n="$2" -v b="$3" 'BEGIN { srand(seed); id = 1; print "# generated tree"
+    printf "%d 1 0 0 0 2 -1\n", id
+    for (i = 1; i < n; i++) { id++; printf "%d 1 %.3f %.3f %.3f 2 %d\n", id, 10 * cos(0.2 * i) + rand(),
+                                     10 * sin(0.2 * i) + rand(), 2 * i, id - 1 }
+    for (k = 0; k < b; k++) { p = 1 + int(rand() * (n - 1)); x = 10 * cos(0.2 * p); y = 10 * sin(0.2 * p)
+      for (j = 1; j <= 15; j++) { id++; printf "%d 3 %.3f %.3f %.3f 1 %d\n", id, x + 0.8 * j * cos(k + 0.1 * j),
+                                          y + 0.8 * j * sin(k), 2 * p + 0.3 * j * rand(), p; p = id } }
+    printf "%d 1 50 50 50 1 -1\n", id + 1 }'
+}
+for s in 1 2 3 4; do swc_tree "$s" $((30 + 20 * s)) $((2 + s)) >"$work/tree-$s.swc"; done
+awk 'BEGIN { print "vessel,x,y,z"; for (v = 1; v <= 5; v++) for (i = 0; i < 40; i++)
+             printf "%d,%.3f,%.3f,%.3f\n", v, 3 * cos(0.15 * i + v), 3 * sin(0.15 * i), 0.4 * i }' >"$work/mixed.csv"
+swc_files=("$work/tree-1.swc" "$work/shard-b.txt" "$work/tree-2.swc" "$work/mixed.csv" "$work/tree-3.swc" "$work/tree-4.swc")
+"$T" metrics -q --units mm -o "$work/swc-whole.tsv" "${swc_files[@]}"
+swc_shards_join() {   # swc_shards_join N
+  local k parts=()
+  for k in $(seq "$1"); do
+    "$T" metrics -q --units mm --shard "$k/$1" -o "$work/swc-$k-of-$1.tsv" "${swc_files[@]}" || return 1
+    parts+=("$work/swc-$k-of-$1.tsv")
+    cmp -s <(grep '^input' "$work/swc-whole.tsv.provenance.tsv") <(grep '^input' "$work/swc-$k-of-$1.tsv.provenance.tsv") \
+      || { echo "shard $k of $1: its provenance's inputs differ from the whole run's"; return 1; }
+  done
+  awk 'FNR > 1 || NR == 1' "${parts[@]}" | cmp - "$work/swc-whole.tsv"
+}
+swc_shards_join_all() { swc_shards_join 3 && swc_shards_join 5 && swc_shards_join 8; }
+check "--shard on SWC trees, plain text and CSV: shards 1..3, 1..5 and 1..8 join to the whole run; every shard's provenance names every input" \
+  swc_shards_join_all
+swc_shard_skips_files() {   # an earlier tree with a bad coordinate: counted, but only the shards that hold it read it
+  sed '5s/^\([0-9]*\) \([0-9]*\) [^ ]*/\1 \2 x/' "$work/tree-1.swc" >"$work/tree-bad.swc"
+  grep -q '^[0-9]* [0-9]* x ' "$work/tree-bad.swc" || return 1
+  "$T" metrics -q --units mm --shard 4/4 -o "$work/skip.tsv" "$work/tree-bad.swc" "$work/tree-4.swc" "$work/tree-4.swc" \
+    || { echo "shard 4 of 4 read the bad tree"; return 1; }
+  [ "$(awk -F'\t' '$1 == "input" && NR < 7 { print $3 }' "$work/skip.tsv.provenance.tsv")" \
+    = "$(sha256sum <"$work/tree-bad.swc" | cut -d' ' -f1)" ] || { echo "the unread tree's digest is not its sha256sum"; return 1; }
+  "$T" metrics -q --units mm --shard 1/4 "$work/tree-bad.swc" "$work/tree-4.swc" "$work/tree-4.swc" >/dev/null \
+    2>"$work/skip.err"; [ $? = 2 ] && grep -q 'tree-bad.swc:5:' "$work/skip.err" || { echo "shard 1 of 4 did not fail"; return 1; }
+  "$T" metrics -q --units mm "$work/tree-bad.swc" "$work/tree-4.swc" >/dev/null 2>&1; [ $? = 2 ]
+}
+check "--shard: a shard leaves unread an SWC file without vessels of its own (its digest still in the provenance); the shard that holds it, and the whole run, report its bad line" \
+  swc_shard_skips_files
 for bad in 0/4 5/4 1/0 x 1/ 2/3x; do
   check "--shard $bad: exit 2" exit_status_and_one_line 2 "$T" metrics -q --shard "$bad" "$work/shard-a.txt"
 done
