@@ -380,6 +380,38 @@ swc_shard_skips_files() {   # an earlier tree with a bad coordinate: counted, bu
 }
 check "--shard: a shard leaves unread an SWC file without vessels of its own (its digest still in the provenance); the shard that holds it, and the whole run, report its bad line" \
   swc_shard_skips_files
+# In a point-per-line file a shard deals whole blocks of lines by their place among the file's
+# point lines, and passes over those of earlier shards without reading a number.
+awk 'BEGIN { srand(5) } { r = rand(); sub(/\r$/, "") }
+     NF == 0 { print (r < 0.3 ? " , " : r < 0.5 ? "\t" : ""); next }
+     { if (r < 0.05) print "# a note"; printf "%s%s\n", $0, r < 0.5 ? "\r" : "" }' "$work/shard-a.txt" >"$work/shard-crlf.txt"
+text_shards_join() {   # text_shards_join N OPTIONS...: comments, CRLF and blank lines of commas, with SWC and CSV
+  local n=$1 k parts=(); shift
+  "$T" metrics -q "$@" -o "$work/text-whole.tsv" "$work/shard-crlf.txt" "$work/tree-2.swc" "$work/shard-b.txt" \
+    "$work/mixed.csv" || return 1
+  for k in $(seq "$n"); do
+    "$T" metrics -q "$@" --shard "$k/$n" -o "$work/text-$k.tsv" "$work/shard-crlf.txt" "$work/tree-2.swc" \
+      "$work/shard-b.txt" "$work/mixed.csv" || return 1
+    parts+=("$work/text-$k.tsv")
+  done
+  awk 'FNR > 1 || NR == 1' "${parts[@]}" | cmp - "$work/text-whole.tsv"
+}
+text_shards_all() {
+  text_shards_join 4 && text_shards_join 9 && text_shards_join 5 --split-gap 0.5 && text_shards_join 3 --keep-going
+}
+check "--shard on plain text with comments, CRLF and blank lines of commas (beside SWC and CSV): 4 and 9 shards join to the whole, and so do 5 with --split-gap and 3 with --keep-going" \
+  text_shards_all
+text_shard_passes_over() {   # a bad number in the first of many blocks: only the shards that hold it read it
+  { printf '0 0 0\n1 x 0\n2 1 0\n\n'; cat "$work/shard-a.txt"; } >"$work/text-bad.txt"
+  "$T" metrics -q --shard 4/4 "$work/text-bad.txt" >/dev/null || { echo "shard 4 of 4 read the bad block"; return 1; }
+  "$T" metrics -q --shard 1/4 "$work/text-bad.txt" >/dev/null 2>"$work/pass.err"; [ $? = 2 ] \
+    && grep -q 'text-bad.txt:2:' "$work/pass.err" || { echo "shard 1 of 4 did not fail"; return 1; }
+  "$T" metrics -q "$work/text-bad.txt" >/dev/null 2>&1; [ $? = 2 ] || return 1
+  # with --split-gap the pieces are numbered across the file, so every shard reads the blocks before its own
+  "$T" metrics -q --split-gap 0.5 --shard 4/4 "$work/text-bad.txt" >/dev/null 2>&1; [ $? = 2 ]
+}
+check "--shard: a shard passes over a text file's blocks of earlier shards unread (a bad number there is the first shard's to report), except under --split-gap" \
+  text_shard_passes_over
 for bad in 0/4 5/4 1/0 x 1/ 2/3x; do
   check "--shard $bad: exit 2" exit_status_and_one_line 2 "$T" metrics -q --shard "$bad" "$work/shard-a.txt"
 done
