@@ -7,7 +7,7 @@
 #   make paper        build/paper.pdf from the committed results/ and figures/ (no data needed)
 #   make bench        timing of the full BraVa set (median of BENCH_RUNS runs, 1 and 2 threads);
 #                     BENCH_BASELINE=old/tortuosity: the ratio to an older build, run by run
-#   make bench-shards what one shard of 8 costs against the whole run
+#   make bench-shards what the first and the last shard of 8 cost against the whole run (text, SWC)
 #   make bench-stages where its time goes, stage by stage (perf)
 #   make memory       peak memory of metrics on 10^4, 10^5 and 10^6 vessels, and of one
 #                     vessel of 10^6 points at 100X
