@@ -412,6 +412,31 @@ text_shard_passes_over() {   # a bad number in the first of many blocks: only th
 }
 check "--shard: a shard passes over a text file's blocks of earlier shards unread (a bad number there is the first shard's to report), except under --split-gap" \
   text_shard_passes_over
+shard_empty_last() {   # a file without points after all the others: the last shard reads it and fails, as the whole run
+  : >"$work/empty.txt"; printf '# only a comment\n' >"$work/comment.txt"
+  local f n k failed
+  for f in empty comment; do
+    "$T" metrics -q "$work/shard-b.txt" "$work/$f.txt" >/dev/null 2>&1; [ $? = 2 ] || return 1
+    for n in 1 2 3; do
+      failed=0
+      for k in $(seq $n); do "$T" metrics -q --shard $k/$n "$work/shard-b.txt" "$work/$f.txt" >/dev/null 2>&1 || failed=1; done
+      [ $failed = 1 ] || { echo "$f.txt last: no shard of $n failed"; return 1; }
+    done
+  done
+}
+check "--shard: a file without points after every other file is read by the last shard, which fails as the whole run does" \
+  shard_empty_last
+shard_keep_going_directory() {   # --keep-going: a directory and /dev/null are reported and left out by the shards too
+  mkdir -p "$work/a-directory"
+  "$T" metrics -q --keep-going -o "$work/kgd.tsv" "$work/shard-b.txt" "$work/a-directory" /dev/null 2>/dev/null; [ $? = 1 ] || return 1
+  local k; for k in 1 2 3; do
+    "$T" metrics -q --keep-going --shard $k/3 -o "$work/kgd-$k.tsv" "$work/shard-b.txt" "$work/a-directory" /dev/null \
+      2>"$work/kgd.err"; [ $? = 1 ] && grep -q 'a-directory: is a directory' "$work/kgd.err" || { echo "shard $k"; return 1; }
+  done
+  awk 'FNR > 1 || NR == 1' "$work"/kgd-{1,2,3}.tsv | cmp - "$work/kgd.tsv"
+}
+check "--shard --keep-going: a directory and /dev/null are reported and left out, and the shards join to the whole" \
+  shard_keep_going_directory
 for bad in 0/4 5/4 1/0 x 1/ 2/3x; do
   check "--shard $bad: exit 2" exit_status_and_one_line 2 "$T" metrics -q --shard "$bad" "$work/shard-a.txt"
 done
