@@ -494,10 +494,19 @@ build/paper.tex: paper.nw | $(TOOLS_report)
 	noweave -delay -index paper.nw | cpif $@
 
 # FORCE_SOURCE_DATE: the date on the page and in the PDF is SOURCE_DATE_EPOCH's, not the build day's.
+# A pass is run again while it changed what the next one reads (the cross-references, the contents,
+# the bookmarks) or its log asks for it, at most PDFLATEX_PASSES in all: a warm build whose pages
+# did not move takes one pass, a cold one three.
+PDFLATEX_PASSES := 5
+PDFLATEX_READS  := paper.aux paper.toc paper.out
 define run_pdflatex
-cd build && for pass in 1 2 3; do \
+cd build && for pass in $$(seq $(PDFLATEX_PASSES)); do \
+  before=$$(cksum $(PDFLATEX_READS) 2>/dev/null || true); \
   FORCE_SOURCE_DATE=1 pdflatex -interaction=nonstopmode -halt-on-error paper.tex >pdflatex.log \
-  || { tail -30 pdflatex.log; exit 1; }; done
+  || { tail -30 pdflatex.log; exit 1; }; \
+  [ "$$before" = "$$(cksum $(PDFLATEX_READS) 2>/dev/null || true)" ] && ! grep -q 'Rerun' pdflatex.log && break; \
+  [ $$pass -lt $(PDFLATEX_PASSES) ] || { echo "build/paper.pdf: still changing after $$pass passes"; exit 1; }; \
+done
 @! grep -E 'Warning.*undefined|Citation.*undefined' build/pdflatex.log
 @$(check_print)
 endef
