@@ -183,8 +183,9 @@ check "-o FILE with a FIFO at FILE.provenance.tsv: exit 2 at once (no wait for a
 killed_run_leaves_nothing() {   # killed_run_leaves_nothing SIGNAL
   local sig=$1 dir=$work/k-$1 pid status
   mkdir "$dir"
-  set -m    # a job of its own: a non-interactive shell starts background jobs with SIGINT ignored
-  "$T" "${slow[@]}" -o "$dir/out.tsv" "$work/slow.txt" 2>"$work/stderr" &
+  set -m    # a job of its own: a non-interactive shell starts background jobs with SIGINT ignored,
+  # and env restores the default where this script itself was started with it ignored
+  env --default-signal=INT "$T" "${slow[@]}" -o "$dir/out.tsv" "$work/slow.txt" 2>"$work/stderr" &
   pid=$!
   set +m
   sleep 0.5
