@@ -113,7 +113,7 @@ bin/tortuosity: $(CLI_OBJ) $(LIB_OBJ) | $(TOOLS_build)
 	@mkdir -p bin
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
-build/unit-tests: build/obj/unit-tests.o $(LIB_OBJ) | $(TOOLS_build)
+build/unit-tests: build/obj/unit-tests.o $(LIB_OBJ) build/obj/textbuf.o | $(TOOLS_build)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 # ---------------------------------------------------------------- library, manual page, installation
@@ -577,7 +577,7 @@ SAN_CC     = $(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS)
 build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
 	@mkdir -p $(dir $@)
 	$(SAN_CC) -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
-build/sanitize/unit-tests: build/sanitize/unit-tests.o $(SAN_OBJ) | $(TOOLS_build)
+build/sanitize/unit-tests: build/sanitize/unit-tests.o $(SAN_OBJ) build/sanitize/textbuf.o | $(TOOLS_build)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
 build/sanitize/tortuosity: $(addprefix build/sanitize/,$(addsuffix .o,$(CLI_MODULES))) $(SAN_OBJ) | $(TOOLS_build)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
