@@ -198,6 +198,9 @@ killed_run_leaves_nothing() {   # killed_run_leaves_nothing SIGNAL
 }
 check "SIGTERM while computing: non-zero exit, nothing left in the output directory" killed_run_leaves_nothing TERM
 check "SIGINT while computing: non-zero exit, nothing left in the output directory" killed_run_leaves_nothing INT
+for sig in HUP QUIT ALRM USR1 USR2 PIPE XCPU VTALRM PROF; do   # every catchable signal that ends a process
+  check "SIG$sig while computing: non-zero exit, nothing left in the output directory" killed_run_leaves_nothing $sig
+done
 
 refused_before_computing() {    # refused_before_computing OUTPUT: exit 2 within 1 s, message names OUTPUT's directory
   local out=$1 t0 t1
@@ -818,6 +821,49 @@ keep_going_shards() {   # the shards of a mixed batch join to the whole good res
 check "--keep-going --shard K/3 on a mixed batch: the three shards join to the good files' result" keep_going_shards
 check "without --keep-going one bad file still stops the batch: exit 2, no rows" \
   refused 2 "$T" metrics -q --rates 1 "$work/h3.txt" "$work/bad.txt"
+
+# ---------------------------------------------------------------- 9. inputs that never end, or too large to hold
+# An input is read whole; what its first bytes already refuse is refused from them, and the rest stops
+# at half the memory the run may use, each with exit 2 and a message naming the input.
+endless_refused_at_once() {   # endless_refused_at_once FORMAT: /dev/zero refused from its first bytes
+  local t0 t1
+  t0=$(date +%s.%N)
+  run timeout 20 "$T" metrics -q --format "$1" /dev/zero
+  t1=$(date +%s.%N)
+  expect_rc 2 && has_message || return 1
+  grep -qF "/dev/zero" "$work/stderr" || { echo "message does not name /dev/zero:"; head -3 "$work/stderr"; return 1; }
+  elapsed_below "$t0" "$t1" 2 || { echo "took $(awk -v a="$t0" -v b="$t1" 'BEGIN { print b - a }') s"; return 1; }
+}
+for fmt in text csv swc tre mrk angicart npy vtk vtp; do
+  check "--format $fmt /dev/zero: exit 2 within 2 s, from its first bytes, message names it" endless_refused_at_once $fmt
+done
+check "/dev/zero as plain text: exit 2, 'NUL bytes'" messages_say "NUL bytes" "$T" metrics -q /dev/zero
+too_large_file() {    # a sparse file of twice the machine's memory: refused before a byte is read
+  local kb
+  kb=$(awk '/^MemTotal:/ { print $2 }' /proc/meminfo)
+  truncate -s $((2 * kb))K "$work/huge.txt" || { echo "cannot make a sparse file here"; return 1; }
+  run timeout 5 "$T" metrics -q "$work/huge.txt"
+  rm -f "$work/huge.txt"
+  expect_rc 2 && grep -q "more than .* half the memory" "$work/stderr" \
+    || { echo "exit $rc:"; head -3 "$work/stderr"; return 1; }
+}
+check "a file twice the machine's memory (sparse): exit 2 at once, 'more than ... half the memory'" too_large_file
+endless_pipe() {      # text that never ends, under ulimit -v 1 GB: refused past 500 MB, not killed
+  (ulimit -v 1000000; yes 'abc' | exec timeout 60 "$T" metrics -q -) >"$work/stdout" 2>"$work/stderr"; rc=$?
+  expect_rc 2 && grep -q "standard input\|-: more than" "$work/stderr" \
+    || { echo "exit $rc:"; head -3 "$work/stderr"; return 1; }
+}
+endless_hdf5() {      # HDF5 may have a user block before its signature: read up to the limit, then refused
+  (ulimit -v 1000000; exec timeout 60 "$T" metrics -q --format hdf5 /dev/zero) >"$work/stdout" 2>"$work/stderr"; rc=$?
+  expect_rc 2 && grep -q "more than" "$work/stderr" || { echo "exit $rc:"; head -3 "$work/stderr"; return 1; }
+}
+if grep -q __asan_init "$T" 2>/dev/null; then
+  skip "yes abc | metrics - under ulimit -v 1 GB: exit 2, 'more than'" "AddressSanitizer build"
+  skip "--format hdf5 /dev/zero under ulimit -v 1 GB: exit 2, 'more than'" "AddressSanitizer build"
+else
+  check "yes abc | metrics - under ulimit -v 1 GB: exit 2, 'more than'" endless_pipe
+  check "--format hdf5 /dev/zero under ulimit -v 1 GB: exit 2, 'more than'" endless_hdf5
+fi
 
 echo "reliability: $passed passed, $failed failed"
 exit 0
