@@ -140,9 +140,17 @@ if [ -c /dev/full ]; then
   check "metrics of 50 helices >/dev/full: exit 1, message" write_error "$T" metrics -q "$work/h50.txt"
   check "profile >/dev/full: exit 1, message" write_error "$T" profile -q "$work/h50.txt"
   check "sufficient >/dev/full (small output): exit 1, message" write_error "$T" sufficient -q "$work/radii.txt"
+  printf '0 0 0\n1 1 0\n' >"$work/two-points.txt"    # a warning: no curvature at any rate
+  stderr_full() {
+    "$T" metrics "$work/two-points.txt" >/dev/null 2>/dev/full; rc=$?
+    expect_rc 1
+  }
+  check "metrics with a warning, standard error on /dev/full: exit 1" stderr_full
+  check "the same with -q (nothing to say): exit 0" sh -c '"$1" metrics -q "$2" >/dev/null 2>/dev/full' sh "$T" \
+    "$work/two-points.txt"
 else
   for name in "phantom --points 1000 >/dev/full" "phantom --truth >/dev/full" "phantom -o LINK -> /dev/full" \
-              "metrics >/dev/full" "profile >/dev/full" "sufficient >/dev/full"; do
+              "metrics >/dev/full" "profile >/dev/full" "sufficient >/dev/full" "2>/dev/full" "-q 2>/dev/full"; do
     skip "$name" "no /dev/full"
   done
 fi
