@@ -5,6 +5,8 @@
 #   make reproduce    data -> results/ -> figures/ -> build/paper.pdf
 #   make report       build/paper.pdf (runs whatever results it needs)
 #   make paper        build/paper.pdf from the committed results/ and figures/ (no data needed)
+#   make fidelity     the fidelity benchmark: a sweep of curves of known curvature and torsion ->
+#                     results/fidelity.tsv, and the summary against its acceptance
 #   make bench        timing of the full BraVa set (median of BENCH_RUNS runs, 1 and 2 threads);
 #                     BENCH_BASELINE=old/tortuosity: the ratio to an older build, run by run
 #   make bench-shards what the first and the last shard of 8 cost against the whole run (text, SWC)
@@ -74,13 +76,13 @@ LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(SHARED_MODULES) $(MODULES) $(
 CLI_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(CLI_MODULES)))
 C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)) \
              $(addsuffix .c,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES) $(CLI_MODULES)) \
-             unit-tests.c fuzz-readers.c)
+             unit-tests.c fuzz-readers.c fidelity-sweep.c)
 SCRIPTS := scripts/analysis.R scripts/phantom-tables.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
            scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk \
            scripts/structure.sh scripts/modules.awk scripts/concordance-tsv.awk scripts/concordance-table.awk \
-           scripts/metrics-table.awk scripts/phantom-truth.awk
+           scripts/metrics-table.awk scripts/phantom-truth.awk scripts/fidelity.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end \
            python/tortuosity.py
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
@@ -382,7 +384,7 @@ DATA_TSVS      := results/recon-error.tsv results/recon-length.tsv results/perce
 PHANTOM_TABLES := results/phantom-table.tex results/phantom-paper-tables.tex
 PHANTOM_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
                   results/phantom-sensitivity.tsv results/phantom-reading.tsv
-RESULT_TABLES  := $(DATA_TABLES) $(PHANTOM_TABLES) results/numbers.tex
+RESULT_TABLES  := $(DATA_TABLES) $(PHANTOM_TABLES) results/fidelity-table.tex results/numbers.tex
 RESULT_TSVS    := $(DATA_TSVS) $(PHANTOM_TSVS)
 SOA_POINTS     := build/results/soa-acct-points.tsv
 SUMMARY_TMP    := build/results/summary.tmp
@@ -413,9 +415,32 @@ $(PHANTOM_TABLES) $(PHANTOM_TSVS) build/results/numbers-phantoms.tex &: build/sc
 	@mv $(addprefix $(PHANTOM_TMP)/,$(notdir $(PHANTOM_TABLES) $(PHANTOM_TSVS))) results/
 	@mv $(PHANTOM_TMP)/numbers.tex build/results/numbers-phantoms.tex
 
+# The fidelity benchmark (report, "How often is a number right"): a sweep of curves whose curvature and
+# torsion are known exactly, from one seed, measured at the four rates with the uncertainties, and
+# compared with their truth: results/fidelity.tsv, and the report's table and numbers.
+FIDELITY_SEED := 1
+build/fidelity-sweep: build/src/fidelity-sweep.c | $(TOOLS_build)
+	$(CC) $(CFLAGS) -o $@ $< -lgsl -lgslcblas -lm
+build/fidelity/curves.txt build/fidelity/truth.tsv &: build/fidelity-sweep
+	@mkdir -p $(@D)
+	./build/fidelity-sweep --seed $(FIDELITY_SEED) --curves build/fidelity/curves.txt --truth build/fidelity/truth.tsv
+build/fidelity/measured.tsv: build/fidelity/curves.txt bin/tortuosity
+	./bin/tortuosity metrics -q --uncertainty --rates $(RATE_LIST) -o $@ $<
+results/fidelity.tsv: build/scripts/fidelity.awk build/fidelity/truth.tsv build/fidelity/measured.tsv
+	awk -f $^ >$@.tmp && mv $@.tmp $@
+build/results/numbers-fidelity.tex: build/scripts/fidelity.awk build/fidelity/truth.tsv build/fidelity/measured.tsv
+	@mkdir -p $(@D)
+	awk -v report=1 -f $^ >$@.tmp && mv $@.tmp $@
+results/fidelity-table.tex: build/results/numbers-fidelity.tex
+	grep -v '^\\newcommand' $< >$@.tmp && mv $@.tmp $@
+.PHONY: fidelity
+fidelity: results/fidelity.tsv results/fidelity-table.tex
+	@awk -v summary=1 -f build/scripts/fidelity.awk build/fidelity/truth.tsv build/fidelity/measured.tsv
+
 # The report's numbers, the phantoms' first.
-results/numbers.tex: build/results/numbers-phantoms.tex build/results/numbers-data.tex
-	cat $^ >$@.tmp && mv $@.tmp $@
+results/numbers.tex: build/results/numbers-phantoms.tex build/results/numbers-data.tex build/results/numbers-fidelity.tex
+	cat build/results/numbers-phantoms.tex build/results/numbers-data.tex >$@.tmp
+	grep '^\\newcommand' build/results/numbers-fidelity.tex >>$@.tmp && mv $@.tmp $@
 
 # The paper's tables and figures with their counterparts (report, near the start), from the
 # concordance chunk; 'make reproduce' checks that every file a row names exists.
@@ -524,7 +549,7 @@ build/paper.pdf: $(REPORT_INPUTS) $(RESULT_TABLES) $(FIGURES) | $(TOOLS_report)
 
 .PHONY: report reproduce paper
 report: build/paper.pdf
-reproduce: results/concordance.tsv build/paper.pdf $(FIGURE_PNGS)
+reproduce: results/concordance.tsv results/fidelity.tsv build/paper.pdf $(FIGURE_PNGS)
 	@$(check_concordance)
 	@echo "reproduce: the report is build/paper.pdf ($$(($$(date +%s) - $(START_TIME))) s)"
 # Under 'make reproduce' the phantom study waits for every measurement of the data. Make starts, in

@@ -224,14 +224,16 @@ check "phantom --density caption: 19 Salkowski points" bash -c "'$T' phantom --s
 check "phantom --density 16 and --points together: exit 2" bash -c "'$T' phantom --density 16 --points 9; [ \$? -eq 2 ]"
 check "phantom-study --reading cm: exit 2 with a message" bash -c \
   "'$T' phantom-study --reading cm 2>&1 | grep -q \"reading takes sd or variance\"; [ \${PIPESTATUS[0]} -eq 2 ]"
-# --uncertainty: a column M_se after every metric, filled for the sums of curvature and torsion and
-# empty for the others; the same metrics as without it; refused for a .vtp output.
+# --uncertainty: a column M_se after every metric, filled wherever the metric is (the sums of
+# curvature and torsion from the noise, every metric from its change at half the basis); the
+# same metrics as without it; refused for a .vtp output.
 uncertainty_columns() {
   "$T" phantom --shape helix --sigma 0.05 --count 2 >"$work/noisy-helix.txt" || return 1
   "$T" metrics -q --rates 10 "$work/noisy-helix.txt" >"$work/plain.tsv" || return 1
   "$T" metrics -q --rates 10 --uncertainty "$work/noisy-helix.txt" >"$work/se.tsv" || return 1
   awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
-    { if ($c["AC_se"] == "" || $c["TT_se"] == "" || !($c["AC_se"] > 0) || $c["SOA_se"] != "" || $c["D_se"] != "") bad = 1 }
+    { for (i = 6; i < c["r_min"]; i += 2) if ($i != "" && $(i + 1) == "") bad = 1
+      if (!($c["AC_se"] > 0) || !($c["TT_se"] > 0) || !($c["L_se"] > 0) || !($c["D_se"] > 0)) bad = 1 }
     END { exit bad || NR != 3 }' "$work/se.tsv" || { head -2 "$work/se.tsv"; return 1; }
   cmp <(cut -f"$(head -1 "$work/se.tsv" | tr '\t' '\n' | grep -vn '_se$' | cut -d: -f1 | paste -sd,)" "$work/se.tsv") \
       "$work/plain.tsv"
@@ -697,11 +699,12 @@ fi
 [ -f "${dat[0]}" ] && check "Angicart: every fit holds to its data" fits_hold angicart "${dat[@]}"
 [ -f "$vtp" ] && check "aorta: every fit holds to its data" fits_hold aorta "$vtp"
 
-# No pooled correlation at the mercy of one vessel: the twelve metrics of the correlation table at
-# 100X over the human datasets (BraVa 3DArteryVis, coronary, aorta), each Pearson correlation
-# recomputed with every vessel left out; the largest change must stay within 0.05.
+# How much one vessel can move a pooled correlation, as the report states it: the twelve metrics of
+# the correlation table at 100X over the human datasets (BraVa 3DArteryVis, coronary, aorta), each
+# Pearson correlation recomputed with every vessel left out, here from the command line's output;
+# the largest change and its vessel must be those of results/correlation-influence.tsv.
 if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ] && [ -f "${npy[0]}" ] && [ -f "$vtp" ] && command -v Rscript >/dev/null; then
-  one_vessel_moves_no_correlation() {
+  correlation_influence_as_stated() {
     { "$T" metrics -q --rates 100 --units mm "${brava[@]}"
       "$T" metrics -q --rates 100 --split-gap 1 "${npy[@]}" | tail -n +2
       "$T" metrics -q --rates 100 "$vtp" | tail -n +2; } >"$work/pool.tsv" || return 1
@@ -709,18 +712,21 @@ if [ -d "$DATA_DIR/brava-3darteryvis/allscans" ] && [ -f "${npy[0]}" ] && [ -f "
       d <- read.delim(commandArgs(TRUE)[1], na.strings = "", colClasses = c(status = "character"))
       d <- d[d$status == "ok", ]
       m <- c("TT", "AT", "TT_L", "AC", "TC_L", "TC", "IC_N", "TCCT_L", "ACCT", "SOA", "TCCT", "IC_kappa")
-      X <- scale(as.matrix(d[, m]), scale = FALSE); n <- nrow(X) - 1; worst <- 0
+      X <- scale(as.matrix(d[, m]), scale = FALSE); n <- nrow(X) - 1; worst <- 0; who <- ""
       for (a in 1:11) for (b in (a + 1):12) {
         x <- X[, a]; y <- X[, b]; sx <- sum(x) - x; sy <- sum(y) - y
         loo <- (n * (sum(x * y) - x * y) - sx * sy) /
                sqrt((n * (sum(x * x) - x * x) - sx^2) * (n * (sum(y * y) - y * y) - sy^2))
-        worst <- max(worst, abs(loo - cor(x, y)))
+        change <- abs(loo - cor(x, y))
+        if (max(change) > worst) { worst <- max(change); who <- paste(basename(d$file), d$vessel)[which.max(change)] }
       }
-      cat("largest change", worst, "\n"); quit(status = worst > 0.05)' "$work/pool.tsv" >"$work/loo.log" 2>&1 \
-      || { cat "$work/loo.log"; return 1; }
+      stated <- read.delim(commandArgs(TRUE)[2])[1, ]
+      cat("largest change", worst, "leaving out", who, "; stated", stated$largest_change, stated$vessel, "\n")
+      quit(status = !(abs(worst - stated$largest_change) <= 5e-3 * worst && endsWith(stated$vessel, who)))' \
+      "$work/pool.tsv" "${REPO:-.}/results/correlation-influence.tsv" >"$work/loo.log" 2>&1 || { cat "$work/loo.log"; return 1; }
   }
-  check "correlation table: leaving out any one vessel moves no Pearson correlation by more than 0.05" \
-    one_vessel_moves_no_correlation
+  check "correlation table: the vessel that moves a pooled correlation most, and by how much, as the report says" \
+    correlation_influence_as_stated
 fi
 
 aorta=$DATA_DIR/vmtk-aorta/aorta-centerline.lines.csv
