@@ -576,7 +576,8 @@ $(TEST_LOCALE): | $(TOOLS_test)
 	localedef -i de_DE -f UTF-8 $@
 
 .PHONY: check
-check: build/unit-tests bin/tortuosity build/scripts/slurm-shards.sh build/scripts/structure.sh $(TEST_LOCALE) | $(TOOLS_test)
+check: build/unit-tests bin/tortuosity build/fidelity-sweep build/scripts/fidelity.awk build/scripts/slurm-shards.sh \
+       build/scripts/structure.sh $(TEST_LOCALE) | $(TOOLS_test)
 	@echo "== unit tests (paper.nw)"
 	@./build/unit-tests | tee build/unit-tests.log
 	@echo "== end-to-end checks (tests/)"

@@ -239,6 +239,25 @@ uncertainty_columns() {
       "$work/plain.tsv"
 }
 check "metrics --uncertainty: M_se beside each metric, filled where defined, the metrics unchanged" uncertainty_columns
+# The fidelity benchmark in small (make fidelity runs it whole): the sweep's self-test against
+# closed forms and finite differences, then 300 of its curves of another seed at 10X. Where the
+# data sample the curve, D, TC and AC are within 10% of the truth in at least 93%, and over all ok
+# rows within 10% or three M_se in at least 93% (the whole sweep: 96-100% and 95-96%).
+sweep=${REPO:-.}/build/fidelity-sweep
+fidelity_in_small() {
+  "$sweep" --selftest >"$work/selftest.log" || { cat "$work/selftest.log"; return 1; }
+  "$sweep" --seed 7 --scale 0.1 --curves "$work/fid-curves.txt" --truth "$work/fid-truth.tsv" || return 1
+  "$T" metrics -q --uncertainty --rates 10 "$work/fid-curves.txt" >"$work/fid-measured.tsv" || return 1
+  awk -v summary=1 -f "${REPO:-.}/build/scripts/fidelity.awk" "$work/fid-truth.tsv" "$work/fid-measured.tsv" \
+    >"$work/fid-summary.txt" || return 1
+  awk '/^10 / { gsub(/\|/, " | "); $0 = $0; rows++
+                for (i = 1; i <= NF; i++) if ($i == "|") bar[++k] = i
+                for (m = 1; m <= 4; m++) if ($(bar[m] + 2) + 0 < 93) bad = 1 }
+       /^  n [0-9]+ +notok/ { if (!well++ && ($8 + 0 < 93 || $10 + 0 < 93 || $12 + 0 < 93)) bad = 1 }
+       END { exit bad || !well || rows != 1 }' "$work/fid-summary.txt" || { cat "$work/fid-summary.txt"; return 1; }
+}
+[ -x "$sweep" ] && check "fidelity in small: the sweep's truths hold, and 300 curves of known curvature are measured right" \
+  fidelity_in_small
 check "metrics --uncertainty -o x.vtp: exit 2" bash -c \
   "'$T' metrics -q --uncertainty -o '$work/se.vtp' '$work/noisy-helix.txt' 2>/dev/null; [ \$? -eq 2 ]"
 # A long vessel: 11,000 points of the helix at 100X are 1.1 million samples, more than are measured
