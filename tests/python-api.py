@@ -163,6 +163,32 @@ def test_errors():
     return None
 
 
+def test_degenerate_fits_do_not_end_the_host():
+    # Fits whose factor is singular, where GSL would call its error handler: in a process of their own, so
+    # that an abort shows as a signal. Each must give the command line's status.
+    cases = (("3 points, penalty order 4", [[0, 0, 0], [1, 0.2, 0], [2, 0, 0.1]], "penalty_order=4"),
+             ("4 points, penalty order 4", [[0, 0, 0], [1, 0.2, 0], [2, 0, 0.1], [3, 0.1, 0]], "penalty_order=4"),
+             ("5 collinear points, penalty order 4, degree 3", [[i, 0, 0] for i in range(5)],
+              "penalty_order=4, degree=3"),
+             ("3 points, fixed lambda 0", [[0, 0, 0], [1, 1, 0], [2, 0, 0]], "lambda_=0"),
+             ("6 points of a zigzag, penalty order 4, degree 3", [[i, i % 2, 0] for i in range(6)],
+              "penalty_order=4, degree=3"))
+    for name, points, options in cases:
+        code = ("import tortuosity, numpy as np\n"
+                "r = tortuosity.measure(np.array(%r, float), rate=10, %s)\n"
+                "print(r['status'])" % (points, options))
+        run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+        if run.returncode != 0:
+            return "%s: exit %d, %s" % (name, run.returncode, run.stderr.strip()[-200:])
+        write_text(os.path.join(work, "degenerate.txt"), [np.array(points, float)])
+        flags = options.replace("penalty_order=", "--penalty-order ").replace("degree=", "--degree ") \
+                       .replace("lambda_=", "--lambda ").replace(",", "").split()
+        row = cli_table("metrics", "--rates", "10", *flags, os.path.join(work, "degenerate.txt"))[0]
+        if run.stdout.strip() != row["status"]:
+            return "%s: status %s, the command line's %s" % (name, run.stdout.strip(), row["status"])
+    return None
+
+
 check("version: the library's is the program's", test_version)
 check("profile of a helix: kappa 0.2/mm, tau 0.1/mm, a unit tangent normal to N, errors in the window",
       test_helix_profile)
@@ -172,5 +198,7 @@ check("read: text with and without radii, CSV in micrometres with named columns,
       test_read_formats)
 check("errors are exceptions with the library's message; a two-point vessel has a length, a status and NaN",
       test_errors)
+check("degenerate fits (singular factors) give the command line's status and never end the host",
+      test_degenerate_fits_do_not_end_the_host)
 print("python: %d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)
