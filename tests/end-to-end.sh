@@ -357,6 +357,22 @@ sufficient_shards() {
   awk 'FNR > 1 || NR == 1' "$work"/suff-{1,2,3}.tsv | cmp - "$work/suff-all.tsv"
 }
 check "sufficient --shard: shards 1..3 joined are the unsharded output" sufficient_shards
+# The smallest sufficient rate whatever the ladder's order: shuffled and reversed ladders, with the
+# rates a vessel needs among them, give the ascending ladder's table byte for byte.
+sufficient_any_order() {
+  local up=1,2,5,10,20,50,100 ladder
+  "$T" sufficient -q --ladder "$up" "$work/radii12.txt" >"$work/suff-up.tsv" || return 1
+  awk -F'\t' 'NR > 1 && $6 != "none" { n++ } END { exit n < 6 }' "$work/suff-up.tsv" || return 1
+  for ladder in 100,50,20,10,5,2,1 20,1,100,5,50,2,10 100,10,1; do
+    "$T" sufficient -q --ladder "$ladder" "$work/radii12.txt" >"$work/suff-order.tsv" || return 1
+    if [ "$ladder" = 100,10,1 ]; then
+      "$T" sufficient -q --ladder 1,10,100 "$work/radii12.txt" | cmp -s - "$work/suff-order.tsv" || return 1
+    else
+      cmp -s "$work/suff-up.tsv" "$work/suff-order.tsv" || { echo "ladder $ladder"; return 1; }
+    fi
+  done
+}
+check "sufficient --ladder: the smallest sufficient rate, whatever the ladder's order" sufficient_any_order
 # SWC trees are counted from their ids and parents alone, and a shard leaves unread the files
 # that hold none of its vessels: mixed with plain text and CSV (counted by reading), the shards
 # still join to the whole, and their provenance names every input as the whole run's does.
