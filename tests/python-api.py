@@ -148,6 +148,16 @@ def test_errors():
         (lambda: tortuosity.measure(helix(), segments=2**32 + 5), tortuosity.Error, "segments"),
         (lambda: tortuosity.measure(helix(), degree=4.5), tortuosity.Error, "degree"),
         (lambda: tortuosity.read(os.path.join(work, "two.txt") + "\0junk"), ValueError, "null byte"),
+        (lambda: tortuosity.measure(helix(), lambda_=1e-3, **{"lambda": 10}), TypeError, "give one"),
+        (lambda: tortuosity.measure(helix(), rate=True), tortuosity.Error, "rate"),
+        (lambda: tortuosity.measure(helix(), rate=None), tortuosity.Error, "rate"),
+        (lambda: tortuosity.measure(helix(), trim=True), tortuosity.Error, "trim"),
+        (lambda: tortuosity.measure(helix(), trim="0.1"), tortuosity.Error, "trim"),
+        (lambda: tortuosity.measure(helix(), lambda_="1"), tortuosity.Error, "lambda"),
+        (lambda: tortuosity.measure(helix(), filter="no"), tortuosity.Error, "filter"),
+        (lambda: tortuosity.measure(helix(), planar=2), tortuosity.Error, "planar"),
+        (lambda: tortuosity.measure(helix(), integrator=3), tortuosity.Error, "integrator"),
+        (lambda: tortuosity.profile(helix(), torsion=True), tortuosity.Error, "torsion"),
     )
     for call, kind, words in expected:
         try:
@@ -196,7 +206,7 @@ check("measure a semicircle phantom of radius 1 mm: AC 1/mm, TT 0", test_semicir
 check("measure and profile give the command line's numbers, with the fit's options", test_same_as_command_line)
 check("read: text with and without radii, CSV in micrometres with named columns, the reader's warning",
       test_read_formats)
-check("errors are exceptions with the library's message; a two-point vessel has a length, a status and NaN",
+check("errors are exceptions with the library's message, keywords and their types checked; a two-point vessel has a length, a status and NaN",
       test_errors)
 check("degenerate fits (singular factors) give the command line's status and never end the host",
       test_degenerate_fits_do_not_end_the_host)
