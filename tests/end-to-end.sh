@@ -373,6 +373,23 @@ sufficient_any_order() {
   done
 }
 check "sufficient --ladder: the smallest sufficient rate, whatever the ladder's order" sufficient_any_order
+# Options a command has no use for are refused with exit 2 and a message naming the option, never
+# ignored: --null and --uncertainty outside metrics, --precision without --null; metrics takes them.
+unused_options_refused() {
+  local cmd opts
+  "$T" phantom >"$work/one-helix.txt" || return 1
+  for cmd in profile sufficient; do
+    for opts in "--null planar" "--null straight --precision 0.1" "--precision 0.31,digits:4" "--uncertainty"; do
+      "$T" $cmd $opts "$work/one-helix.txt" >/dev/null 2>"$work/unused.err"; [ $? -eq 2 ] || return 1
+      grep -q -- "${opts%% *}" "$work/unused.err" || { echo "$cmd $opts"; cat "$work/unused.err"; return 1; }
+    done
+  done
+  "$T" metrics --precision 0.1 "$work/one-helix.txt" >/dev/null 2>"$work/unused.err"; [ $? -eq 2 ] || return 1
+  grep -q -- "--precision" "$work/unused.err" || return 1
+  "$T" metrics -q --null planar --precision 0.1 --uncertainty "$work/one-helix.txt" >/dev/null
+}
+check "options that do not apply (--null, --precision, --uncertainty outside metrics) are refused, not ignored" \
+  unused_options_refused
 # SWC trees are counted from their ids and parents alone, and a shard leaves unread the files
 # that hold none of its vessels: mixed with plain text and CSV (counted by reading), the shards
 # still join to the whole, and their provenance names every input as the whole run's does.
