@@ -206,7 +206,8 @@ killed_run_leaves_nothing() {   # killed_run_leaves_nothing SIGNAL
 }
 check "SIGTERM while computing: non-zero exit, nothing left in the output directory" killed_run_leaves_nothing TERM
 check "SIGINT while computing: non-zero exit, nothing left in the output directory" killed_run_leaves_nothing INT
-for sig in HUP QUIT ALRM USR1 USR2 PIPE XCPU VTALRM PROF; do   # every catchable signal that ends a process
+for sig in HUP QUIT ALRM USR1 USR2 PIPE XCPU VTALRM PROF IO PWR STKFLT SYS TRAP ABRT BUS SEGV FPE ILL \
+           RTMIN RTMIN+7 RTMAX; do   # every catchable signal that ends a process (real-time ones by sample)
   check "SIG$sig while computing: non-zero exit, nothing left in the output directory" killed_run_leaves_nothing $sig
 done
 
