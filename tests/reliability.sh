@@ -211,6 +211,28 @@ for sig in HUP QUIT ALRM USR1 USR2 PIPE XCPU VTALRM PROF IO PWR STKFLT SYS TRAP 
   check "SIG$sig while computing: non-zero exit, nothing left in the output directory" killed_run_leaves_nothing $sig
 done
 
+# Standard output is spooled where TMPDIR says (a small /tmp is no limit), and written directly where
+# no spool can be made there; a spool that fails names its directory.
+spool_in_tmpdir() {
+  local dir=$work/spool pid found=0
+  mkdir -p "$dir"
+  TMPDIR=$dir "$T" "${slow[@]}" "$work/slow.txt" >"$work/spooled.tsv" 2>/dev/null &
+  pid=$!
+  sleep 0.5
+  ls -l "/proc/$pid/fd" 2>/dev/null | grep -q "$dir/.tortuosity-spool-" && found=1
+  kill "$pid"; wait "$pid" 2>/dev/null
+  [ "$found" = 1 ] || { echo "no spool in TMPDIR"; return 1; }
+  "$T" phantom --count 3 >"$work/spool-helices.txt" || return 1
+  "$T" metrics -q "$work/spool-helices.txt" >"$work/direct.tsv" || return 1
+  TMPDIR=$work/no-such-dir "$T" metrics -q "$work/spool-helices.txt" >"$work/nodir.tsv" || return 1
+  cmp -s "$work/direct.tsv" "$work/nodir.tsv" || { echo "TMPDIR missing: other output"; return 1; }
+  (ulimit -f 1; TMPDIR=$dir exec "$T" metrics -q "$work/spool-helices.txt" >"$work/limited.tsv" \
+     2>"$work/stderr"); [ $? -ne 0 ] && grep -qF "spooled in $dir" "$work/stderr" \
+     || { echo "a failed spool: exit $?"; cat "$work/stderr"; return 1; }
+}
+check "standard output is spooled in TMPDIR, written directly where TMPDIR has no room for one, a failed spool named" \
+  spool_in_tmpdir
+
 refused_before_computing() {    # refused_before_computing OUTPUT: exit 2 within 1 s, message names OUTPUT's directory
   local out=$1 t0 t1
   t0=$(date +%s.%N)
