@@ -390,6 +390,35 @@ unused_options_refused() {
 }
 check "options that do not apply (--null, --precision, --uncertainty outside metrics) are refused, not ignored" \
   unused_options_refused
+# File names with double quotes (first, inside, last, doubled) and a tab: the table and its
+# provenance read back whole by R's read.delim and Python's csv module (pandas reads as they do).
+quoted_names_read_back() {
+  local dir=$work/quoted name
+  mkdir -p "$dir"
+  for name in '"first.txt' 'in"side.txt' 'last".txt' 'two""quotes.txt' "$(printf 'tab\there.txt')"; do
+    "$T" phantom --count 2 >"$dir/$name" || return 1
+  done
+  "$T" metrics -q --rates 1,2 -o "$dir/out.tsv" "$dir"/*.txt || return 1
+  /usr/bin/python3 - "$dir" <<'PY' || return 1
+import csv, os, sys
+d = sys.argv[1]
+with open(os.path.join(d, "out.tsv"), newline="") as f:
+    rows = list(csv.DictReader(f, delimiter="\t"))
+names = sorted({os.path.basename(r["file"]) for r in rows})
+want = sorted(n.replace("\t", "\\t") for n in os.listdir(d) if n.endswith(".txt"))
+with open(os.path.join(d, "out.tsv.provenance.tsv"), newline="") as f:
+    inputs = [os.path.basename(r["value"]) for r in csv.DictReader(f, delimiter="\t") if r["item"] == "input"]
+sys.exit(not (len(rows) == 20 and names == want and sorted(inputs) == want))
+PY
+  if command -v Rscript >/dev/null; then
+    Rscript --vanilla -e 'd <- read.delim(file.path(commandArgs(TRUE)[1], "out.tsv"))
+      p <- read.delim(file.path(commandArgs(TRUE)[1], "out.tsv.provenance.tsv"))
+      quit(status = !(nrow(d) == 20 && length(unique(d$file)) == 5 && sum(p$item == "input") == 5 &&
+                      "\"first.txt" %in% basename(d$file)))' "$dir" || return 1
+  fi
+}
+check "file names with double quotes and tabs: the table and its provenance read back whole (R, Python's csv)" \
+  quoted_names_read_back
 # SWC trees are counted from their ids and parents alone, and a shard leaves unread the files
 # that hold none of its vessels: mixed with plain text and CSV (counted by reading), the shards
 # still join to the whole, and their provenance names every input as the whole run's does.
