@@ -5,6 +5,7 @@ Usage: PYTHONPATH=PREFIX/lib/python3/dist-packages /usr/bin/python3 tests/python
 (Debian's python3, whose numpy the test stage installs)
 Prints one line per check and "python: N passed, N failed" last.
 """
+import ctypes
 import math
 import os
 import subprocess
@@ -199,6 +200,30 @@ def test_degenerate_fits_do_not_end_the_host():
     return None
 
 
+def test_misaligned_arrays():
+    # Points in a byte buffer at an odd offset, through the module and straight into the library:
+    # the same numbers as aligned points (the library copies what is not aligned for double).
+    pts = helix(60)
+    want = tortuosity.measure(pts)
+    raw = bytearray(pts.size * 8 + 1)
+    view = np.frombuffer(raw, dtype=np.float64, count=pts.size, offset=1).reshape(pts.shape)
+    view[:] = pts
+    if view.flags.aligned:
+        return "the test's view is aligned"
+    got = tortuosity.measure(view)
+    result, message = tortuosity._Result(), ctypes.create_string_buffer(256)
+    opt = tortuosity._options()
+    address = ctypes.cast(ctypes.addressof(ctypes.c_char.from_buffer(raw, 1)), tortuosity._doubles)
+    if tortuosity._lib.tort_measure(address, None, pts.shape[0], b"10", ctypes.byref(opt), ctypes.byref(result),
+                                    message, 256) != 0:
+        return "tort_measure: %s" % message.value
+    direct = tortuosity._as_dict(result)
+    for name in ("L", "AC", "AT", "TCCT"):
+        if not (got[name] == want[name] == direct[name]):
+            return "%s: %r, %r and %r" % (name, want[name], got[name], direct[name])
+    return None
+
+
 check("version: the library's is the program's", test_version)
 check("profile of a helix: kappa 0.2/mm, tau 0.1/mm, a unit tangent normal to N, errors in the window",
       test_helix_profile)
@@ -210,5 +235,7 @@ check("errors are exceptions with the library's message, keywords and their type
       test_errors)
 check("degenerate fits (singular factors) give the command line's status and never end the host",
       test_degenerate_fits_do_not_end_the_host)
+check("points not aligned for double (a byte buffer at an odd offset): the aligned points' numbers",
+      test_misaligned_arrays)
 print("python: %d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)
