@@ -233,6 +233,28 @@ spool_in_tmpdir() {
 check "standard output is spooled in TMPDIR, written directly where TMPDIR has no room for one, a failed spool named" \
   spool_in_tmpdir
 
+# A path under /proc that reaches a regular file is a file, not a descriptor: however it is
+# spelled (through the process's cwd or root, by its PID or self, through a symlink), a run that
+# fails leaves the old result as it was and nothing beside it, and one that succeeds replaces it
+# whole, with its provenance.
+proc_paths_replace_atomically() {
+  local dir=$work/proc-paths spelling
+  mkdir -p "$dir"
+  "$T" phantom >"$dir/good.txt" && printf '1 2 3\nx y z\n' >"$dir/bad.txt" || return 1
+  ln -sfn /proc/self/cwd/old.tsv "$dir/link.tsv"
+  for spelling in /proc/self/cwd/old.tsv "/proc/self/root$dir/old.tsv" link.tsv "/proc/PID/cwd/old.tsv"; do
+    echo OLD >"$dir/old.tsv"; rm -f "$dir/old.tsv.provenance.tsv"
+    (cd "$dir" && exec "$T" metrics -q -o "${spelling/PID/$BASHPID}" good.txt bad.txt) 2>/dev/null
+    [ $? = 2 ] && [ "$(cat "$dir/old.tsv")" = OLD ] && [ "$(ls -A "$dir" | wc -l)" = 4 ] \
+      || { echo "$spelling, a failed run: $(head -c 60 "$dir/old.tsv")"; ls -A "$dir"; return 1; }
+    (cd "$dir" && exec "$T" metrics -q -o "${spelling/PID/$BASHPID}" good.txt) || return 1
+    [ "$(wc -l <"$dir/old.tsv")" -gt 1 ] && grep -q OLD "$dir/old.tsv" && return 1
+    [ -s "$dir/old.tsv.provenance.tsv" ] || { echo "$spelling: no provenance"; return 1; }
+  done
+}
+check "-o through /proc (cwd, root, PID, a symlink): a failed run leaves the old result whole, a good one replaces it" \
+  proc_paths_replace_atomically
+
 refused_before_computing() {    # refused_before_computing OUTPUT: exit 2 within 1 s, message names OUTPUT's directory
   local out=$1 t0 t1
   t0=$(date +%s.%N)
