@@ -2,7 +2,8 @@
 """A Blue Brain vascular graph with every kind of joint, written with h5py, read by
 tortuosity: a chain of single-child links becomes one vessel, a branch and a merge
 (a section with two parents) end vessels, a pure cycle is one vessel started at its
-lowest section; the child's first point, a repeat of its parent's last, is kept once.
+lowest section; the child's first point, a repeat of its parent's last, is kept once; the same
+network compressed by HDF5's filters (and h5py's LZF) reads the same.
 
   hdf5-network.py path/to/tortuosity WORKDIR
 
@@ -46,6 +47,24 @@ want = [("0-2", 7), ("3", 3), ("4", 3), ("5", 3), ("6", 3), ("7", 3), ("8", 3), 
 if got != want:
     sys.exit(f"vessels {got}, expected {want}")
 
+# The same network in chunked datasets, compressed and checked by HDF5's own filters (deflate,
+# shuffle, Fletcher-32, scale-offset, and h5py's LZF), is read as the plain one.
+filters = {"chunked": dict(chunks=True), "gzip": dict(compression="gzip", compression_opts=9),
+           "shuffle+gzip": dict(compression="gzip", shuffle=True), "fletcher32": dict(fletcher32=True),
+           "scaleoffset": dict(scaleoffset=0), "lzf": dict(compression="lzf"),
+           "gzip+fletcher32": dict(compression="gzip", fletcher32=True)}
+for label, options in filters.items():
+    packed = os.path.join(out, "network-%s.h5" % label)
+    with h5py.File(packed, "w") as f:
+        f.create_dataset("points", data=np.array(rows, dtype="<f8"), **options)
+        f.create_dataset("structure", data=np.array([[s0, 0] for s0 in start], dtype="<f8"), **options)
+        f.create_dataset("connectivity", data=np.array(links, dtype="<i8"), **options)
+    run = subprocess.run([tortuosity, "metrics", "-q", "--rates", "raw", "--trim", "0", packed],
+                         capture_output=True, text=True)
+    same = [(f.split("\t")[1], int(f.split("\t")[3])) for f in run.stdout.splitlines()[1:]]
+    if run.returncode != 0 or same != want:
+        sys.exit(f"{label}: status {run.returncode}, {run.stderr.strip()!r}, vessels {same}")
+
 # A link to a section that does not exist is refused with the file's name, status 2.
 bad = os.path.join(out, "bad.h5")
 with h5py.File(bad, "w") as f:
@@ -55,4 +74,5 @@ with h5py.File(bad, "w") as f:
 run = subprocess.run([tortuosity, "metrics", bad], capture_output=True, text=True)
 if run.returncode != 2 or not run.stderr.startswith(bad + ": ") or run.stdout:
     sys.exit(f"bad link: status {run.returncode}, message {run.stderr!r}")
-print(f"hdf5-network: {len(got)} vessels as expected; a bad link refused: {run.stderr.strip()}")
+print(f"hdf5-network: {len(got)} vessels as expected, and with {len(filters)} filters; a bad link refused: "
+      f"{run.stderr.strip()}")
