@@ -54,7 +54,7 @@ CFLAGS  += -std=c11 -D_GNU_SOURCE -Wall -Wextra -fopenmp -pthread -fno-math-errn
 # HDF5's paths come from pkg-config once the build tools are installed (hence '=').
 HDF5_CFLAGS = $(shell pkg-config --cflags hdf5)
 HDF5_LIBS   = $(shell pkg-config --libs hdf5)
-LDLIBS   = -lgsl -lgslcblas -lexpat -ljansson -lz -lcrypto $(HDF5_LIBS) -lm
+LDLIBS   = -lgsl -lgslcblas -lexpat -ljansson -lz -llz4 -llzma -lcrypto $(HDF5_LIBS) -lm
 
 # ---------------------------------------------------------------- the program
 .PHONY: all
@@ -841,7 +841,8 @@ clean:
 # it prints the one apt-get line to run) and is remade when this Makefile changes. Every stage has
 # the build stage's packages too. 'make lint' checks that each program, Python module and LaTeX
 # package a recipe or test uses comes from its stage's packages (scripts/tools-lint.sh).
-PACKAGES_build    := make gcc libc6-dev binutils git noweb libgsl-dev libexpat1-dev libjansson-dev zlib1g-dev libssl-dev \
+PACKAGES_build    := make gcc libc6-dev binutils git noweb libgsl-dev libexpat1-dev libjansson-dev zlib1g-dev liblz4-dev \
+                     liblzma-dev libssl-dev \
                      libhdf5-dev pkg-config
 PACKAGES_report   := gnuplot-nox r-base-core texlive-latex-base texlive-latex-recommended \
                      texlive-fonts-recommended lmodern poppler-utils

@@ -72,8 +72,10 @@ def xml(name, pd, mode, compress=False, header64=False, big=False, encode=True, 
         w.SetInputData(pd)
     {"ascii": w.SetDataModeToAscii, "binary": w.SetDataModeToBinary,
      "appended": w.SetDataModeToAppended}[mode]()
-    if compress:
-        w.SetCompressorTypeToZLib(); w.SetBlockSize(64)
+    if compress:   # True: zlib; or "lz4", "lzma"
+        {True: w.SetCompressorTypeToZLib, "lz4": w.SetCompressorTypeToLZ4,
+         "lzma": w.SetCompressorTypeToLZMA}[compress]()
+        w.SetBlockSize(64)
     else:
         w.SetCompressorTypeToNone()
     w.SetHeaderTypeToUInt64() if header64 else w.SetHeaderTypeToUInt32()
@@ -142,6 +144,10 @@ xml("int16-points.vtp", pdi, "binary", compress=True, idtype32=True)
 xml("int16-points-ascii.vtp", pdi, "ascii", idtype32=True)
 xml("id32.vtp", pd, "appended", encode=False, idtype32=True)
 xml("pieces2.vtp", pd, "appended", compress=True, pieces=2)
+for codec in ("lz4", "lzma"):   # VTK's other compressors, in each mode and header
+    xml("bin-%s.vtp" % codec, pd, "binary", compress=codec)
+    xml("app-%s-64be.vtp" % codec, pd32, "appended", encode=False, compress=codec, header64=True, big=True)
+    xml("appb64-%s.vtp" % codec, pd, "appended", compress=codec)
 xml("pieces2-ascii.vtp", pd32, "ascii", pieces=2)
 legacy("legacy-ascii.vtk", pd, False)
 legacy("legacy-binary.vtk", pd, True)
