@@ -645,8 +645,14 @@ if "$PYTHON" -c 'import vtk' 2>/dev/null; then
   }
   check "profile -o .vtp: vtkXMLPolyDataReader reads every point array as the table has it" \
     vtp_roundtrip profile --rate 10 "$work/salk.txt"
-  check "metrics -o .vtp: every row with samples is a cell with the row's values" \
+  check "metrics -o .vtp: every row is a cell with the row's values" \
     vtp_roundtrip metrics --rates 1,2/mm,10,raw "$work/helices.txt" "$work/salk.txt"
+  # The first vessel without samples (two points: no-curvature; four: too-short at 1X), then others:
+  # VTK reads every piece, every row a cell, with the same arrays.
+  printf '0 0 0\n1 0 0\n\n0 0 0\n0.1 0.2 0\n0.2 0.3 0.1\n0.3 0.3 0.2\n\n' >"$work/short-first.txt"
+  cat "$work/helices.txt" >>"$work/short-first.txt"
+  check "metrics -o .vtp whose first vessels have no samples: VTK reads every row as a cell" \
+    vtp_roundtrip metrics --rates 1,10,raw "$work/short-first.txt"
   "$T" phantom --shape helix --count 3 | awk 'NF { print $0, 0.5 + 0.001 * NR; next } { print }' >"$work/radii-helices.txt"
   vtp_vmtk() {
     "$T" metrics -q "$work/radii-helices.txt" >"$work/rt.tsv" \

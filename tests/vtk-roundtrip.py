@@ -15,7 +15,7 @@ import sys
 
 import vtk
 
-# Statuses whose rows have samples, hence a cell in the .vtp (pipeline.h).
+# Statuses whose rows have samples (pipeline.h); the others' cells are their data polylines.
 WITH_SAMPLES = {"ok", "endpoints-coincide", "all-filtered"}
 TEXT_COLUMNS = {"file", "vessel", "status"}
 
@@ -81,14 +81,15 @@ def check_profile(poly, rows):
 
 
 def check_metrics(poly, rows):
-    rows = [r for r in rows if r["status"] in WITH_SAMPLES]
+    # Every row is a cell: the samples where it has them, else its data polyline (n_data points).
     if poly.GetNumberOfCells() != len(rows):
-        sys.exit(f"{poly.GetNumberOfCells()} cells in the .vtp, {len(rows)} rows with samples in the table")
+        sys.exit(f"{poly.GetNumberOfCells()} cells in the .vtp, {len(rows)} rows in the table")
     cd = poly.GetCellData()
     checked = 0
     for i, row in enumerate(rows):
-        if poly.GetCell(i).GetNumberOfPoints() != int(row["n"]):
-            sys.exit(f"cell {i}: {poly.GetCell(i).GetNumberOfPoints()} points, the table says n = {row['n']}")
+        want = int(row["n"]) if row["status"] in WITH_SAMPLES else int(row["n_data"])
+        if poly.GetCell(i).GetNumberOfPoints() != want:
+            sys.exit(f"cell {i} ({row['status']}): {poly.GetCell(i).GetNumberOfPoints()} points, expected {want}")
         for col, text in row.items():
             if col == "rate":       # a number to threshold (factor, points per mm, 0 for raw) and its text
                 label = cd.GetAbstractArray("rate_label")
