@@ -390,6 +390,19 @@ unused_options_refused() {
 }
 check "options that do not apply (--null, --precision, --uncertainty outside metrics) are refused, not ignored" \
   unused_options_refused
+# A profile with nothing to profile (every vessel without samples at the rate) exits 1 and says so;
+# one vessel with samples among them is a profile. The status warning says what a row has.
+nothing_to_profile() {
+  printf '0 0 0\n1 0 0\n' >"$work/two-points.txt"
+  "$T" profile --rate 10 "$work/two-points.txt" >/dev/null 2>"$work/stderr"; [ $? = 1 ] || return 1
+  grep -q "no vessel had samples to profile" "$work/stderr" || return 1
+  { cat "$work/two-points.txt"; echo; "$T" phantom; } >"$work/two-and-helix.txt"
+  "$T" profile -q --rate 10 --vessel all "$work/two-and-helix.txt" >/dev/null || return 1
+  printf '0 0 0\n1 0.1 0\n2 0.3 0\n3 0.6 0.1\n' >"$work/four-points.txt"
+  "$T" metrics --rates 10 "$work/four-points.txt" 2>&1 >/dev/null | grep -q "no-torsion (L, D, D1 and the metrics of curvature alone)"
+}
+check "profile with nothing to profile: exit 1 and a message; a no-torsion warning names the curvature metrics" \
+  nothing_to_profile
 # File names with double quotes (first, inside, last, doubled) and a tab: the table and its
 # provenance read back whole by R's read.delim and Python's csv module (pandas reads as they do).
 quoted_names_read_back() {
