@@ -70,7 +70,7 @@ FORMAT_MODULES := $(shell sed -n 's|^<<src/\(format-[a-z0-9-]*\)\.c>>=$$|\1|p' p
 API_MODULES    := tortuosity                      # the library's public interface, tortuosity.h
 # The command line by job (each calls only those before it): text buffers, atomic output and
 # provenance, the table and VTK writers, the stream of windows and shards, the commands.
-CLI_MODULES    := textbuf output writers stream cli
+CLI_MODULES    := textbuf suggest output writers stream cli
 HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)))
 LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
 CLI_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(CLI_MODULES)))

@@ -403,6 +403,31 @@ nothing_to_profile() {
 }
 check "profile with nothing to profile: exit 1 and a message; a no-torsion warning names the curvature metrics" \
   nothing_to_profile
+# A slip in a command's or an option's name: exit 2, and the one meant named; a word near none is
+# only unknown.
+did_you_mean() {
+  local typed want
+  while IFS='|' read -r typed want; do
+    "$T" $typed >/dev/null 2>"$work/stderr"; [ $? = 2 ] || { echo "$typed: not exit 2"; return 1; }
+    if [ "$want" = - ]; then grep -q "did you mean" "$work/stderr" && { echo "$typed: a suggestion"; return 1; }
+    else grep -qF "did you mean '$want'" "$work/stderr" || { echo "$typed:"; cat "$work/stderr"; return 1; }; fi
+  done <<'WORDS'
+metrix|metrics
+profiel|profile
+sufficent|sufficient
+phantom-studdy|phantom-study
+xyz|-
+metrics --segmnts=5|--segments
+metrics --uncertainy|--uncertainty
+profile --vesel 1|--vessel
+sufficient --laddr 1,2|--ladder
+phantom --cuont 2|--count
+phantom-study --sigmaa 1|--sigma
+metrics --qqqqqqq|-
+WORDS
+  return 0
+}
+check "a command or an option misspelt: exit 2 and 'did you mean' the one meant, none for a word near nothing" did_you_mean
 # File names with double quotes (first, inside, last, doubled) and a tab: the table and its
 # provenance read back whole by R's read.delim and Python's csv module (pandas reads as they do).
 quoted_names_read_back() {
