@@ -99,7 +99,8 @@ def test_same_as_command_line():
                                                                           "--degree", "4"]),
                            ({"torsion": "significant", "integrator": "rotation"},
                             ["--torsion", "significant", "--integrator", "rotation"]),
-                           ({"trim": 0.2, "planar": True}, ["--trim", "0.2", "--planar"])):
+                           ({"trim": 0.2, "planar": True}, ["--trim", "0.2", "--planar"]),
+                           ({"precision": "0.05x0.05x0.1"}, ["--precision", "0.05x0.05x0.1"])):
         row, = cli_table("metrics", "--rates", "2/mm", *words, path)
         (_, points), = tortuosity.read(path)
         m = tortuosity.measure(points, rate="2/mm", **options)
