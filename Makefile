@@ -184,8 +184,12 @@ install: bin/tortuosity build/lib/libtortuosity.a $(SHARED_LIB) build/include/to
 	install -m 644 build/tortuosity.pc '$(DESTDIR)$(PREFIX)/lib/pkgconfig/'
 	install -m 644 build/tortuosity.1 '$(DESTDIR)$(PREFIX)/share/man/man1/'
 	install -m 644 build/python/tortuosity.py '$(DESTDIR)$(PREFIX)/$(PYTHON_DIR)/'
+	@if [ -f build/paper.pdf ]; then install -d '$(DESTDIR)$(PREFIX)/share/doc/tortuosity' && \
+	  install -m 644 build/paper.pdf '$(DESTDIR)$(PREFIX)/share/doc/tortuosity/' && \
+	  echo "install: the report in $(PREFIX)/share/doc/tortuosity/paper.pdf"; \
+	else echo "install: no report installed: build/paper.pdf is not built ('make reproduce' makes it)"; fi
 uninstall:
-	rm -f $(addprefix '$(DESTDIR)$(PREFIX)'/,$(INSTALLED))
+	rm -f $(addprefix '$(DESTDIR)$(PREFIX)'/,$(INSTALLED) share/doc/tortuosity/paper.pdf)
 
 # ---------------------------------------------------------------- the experiment grid
 # Declared once; passed to the program, to R and to gnuplot.

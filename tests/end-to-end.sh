@@ -26,6 +26,16 @@ if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
   }
   check "plain 'make' in a fresh clone builds bin/tortuosity" make_builds_program
 
+  # make install puts the report where the manual page says, once it is built.
+  if [ -f "$REPO/build/paper.pdf" ]; then
+    install_puts_report() {
+      make -s -C "$REPO" install PREFIX="$work/prefix" >"$work/install.log" 2>&1 || { tail -3 "$work/install.log"; return 1; }
+      cmp -s "$REPO/build/paper.pdf" "$work/prefix/share/doc/tortuosity/paper.pdf" \
+        && grep -q 'share/doc/tortuosity/paper.pdf' "$work/prefix/share/man/man1/tortuosity.1"
+    }
+    check "make install puts the report in share/doc/tortuosity, where the manual page says" install_puts_report
+  fi
+
   # make lint must catch a program whose package a stage does not list: the report stage
   # without poppler-utils (pdftoppm makes the figures' PNGs, pdffonts checks the PDF's fonts).
   # The lint installs every stage's packages first, which only root may do.
@@ -390,6 +400,35 @@ unused_options_refused() {
 }
 check "options that do not apply (--null, --uncertainty outside metrics) are refused, not ignored" \
   unused_options_refused
+# A SlicerVMTK curve whose control point was deleted after its radii were measured: one Radius value
+# too many. Slicer loads it without radii; so does the reader, with a warning, and the curve is measured.
+slicer_radius_mismatch() {
+  local cps="" radii="" i
+  for i in 0 1 2 3 4 5 6 7 8 9 10 11 12; do
+    cps+="${cps:+,}{\"id\": \"$((i + 1))\", \"position\": [$(awk -v t=$i 'BEGIN { printf "%.6f, %.6f, %.6f", 10 * cos(t / 4), 10 * sin(t / 4), t }')], \"positionStatus\": \"defined\"}"
+    radii+="${radii:+, }1.5"
+  done
+  printf '{"markups": [{"type": "Curve", "coordinateSystem": "LPS", "coordinateUnits": "mm", "controlPoints": [%s], "measurements": [{"name": "Radius", "controlPointValues": [%s, 1.5]}]}]}\n' \
+    "$cps" "$radii" >"$work/deleted.mrk.json"
+  "$T" metrics -r 1 "$work/deleted.mrk.json" >"$work/deleted.tsv" 2>"$work/deleted.err" || { cat "$work/deleted.err"; return 1; }
+  grep -q 'Radius measurement has 14 values for 13 control points; read without radii' "$work/deleted.err" || return 1
+  awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i } NR == 2 { exit !($c["status"] == "ok" && $c["r_mean"] == "") }' \
+    "$work/deleted.tsv"
+}
+check "a Slicer curve with one Radius value too many: read without radii, with a warning (as Slicer)" slicer_radius_mismatch
+# Coordinates in the wrong unit: an aorta centerline in micrometres read as millimetres (78 m long), and
+# a vessel in millimetres read as micrometres (steps of nanometres), each warned of.
+units_warned() {
+  awk 'BEGIN { for (i = 0; i < 200; i++) printf "%.1f %.1f %.1f\n", 20000 * cos(i / 50), 20000 * sin(i / 50), 400 * i }' \
+    >"$work/aorta-um.txt"
+  "$T" metrics -r 1 "$work/aorta-um.txt" 2>&1 >/dev/null | grep -q "mm long in steps of .* read in mm: are the units right" || return 1
+  awk 'BEGIN { for (i = 0; i < 50; i++) printf "%.4f %.4f %.4f\n", 5 * cos(i / 100), 5 * sin(i / 100), 0.01 * i }' \
+    >"$work/mm.txt"
+  "$T" metrics -r 1 --units um "$work/mm.txt" 2>&1 >/dev/null | grep -q "read in um: are the units right" || return 1
+  "$T" metrics -r 1 "$work/mm.txt" 2>&1 >/dev/null | grep -q "units" && return 1
+  return 0
+}
+check "coordinates in the wrong unit (a vessel longer than a body, or steps of nanometres) are warned of" units_warned
 # A voxel path: two turns of a helix (radius 3.296 mm, pitch 0.3 of it; curvature 0.2783 /mm)
 # traced through voxels of 0.824 x 0.824 x 1 mm, each point a voxel's centre. Given the voxels
 # (--precision), the fit does not climb their staircase: AC within 5% at 10X; without them GCV's
