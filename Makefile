@@ -58,7 +58,7 @@ LDLIBS   = -lgsl -lgslcblas -lexpat -ljansson -lz -llz4 -llzma -lcrypto $(HDF5_L
 
 # ---------------------------------------------------------------- the program
 .PHONY: all
-all: bin/tortuosity
+all: bin/tortuosity setup.py pyproject.toml
 
 SHARED_MODULES := vessel decimal                  # what every part shares: the vessel, numbers as text
 MODULES := phantom pipeline torsion-stretches band eigen gcv scatter hermite pspline stencil metrics frenet study   # the method, in the order of paper.nw
@@ -84,7 +84,7 @@ SCRIPTS := scripts/analysis.R scripts/phantom-tables.R scripts/recon-error.gp sc
            scripts/structure.sh scripts/modules.awk scripts/concordance-tsv.awk scripts/concordance-table.awk \
            scripts/metrics-table.awk scripts/phantom-truth.awk scripts/fidelity.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end \
-           python/tortuosity.py
+           python/tortuosity.py setup.py pyproject.toml
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
 build/src/%: paper.nw | $(TOOLS_build)
@@ -150,6 +150,19 @@ build/include/tortuosity.h: paper.nw | $(TOOLS_build)
 build/python/tortuosity.py: paper.nw | $(TOOLS_build)
 	@mkdir -p $(@D)
 	notangle -R'python/tortuosity.py' paper.nw | cpif $@
+
+# pip install . (setup.py): the module and the shared library side by side in a package folder.
+# setup.py and pyproject.toml are tangled to the top of the tree, where pip looks, and committed.
+.PHONY: pip-package
+pip-package: build/pip/tortuosity/__init__.py build/pip/tortuosity/libtortuosity.so.1
+build/pip/tortuosity/__init__.py: build/python/tortuosity.py
+	@mkdir -p $(@D)
+	cp $< $@
+build/pip/tortuosity/libtortuosity.so.1: $(SHARED_LIB)
+	@mkdir -p $(@D)
+	cp $< $@
+setup.py pyproject.toml: paper.nw | $(TOOLS_build)
+	notangle -R'$@' paper.nw | cpif $@
 
 PREFIX  ?= /usr/local
 DESTDIR ?=
@@ -592,9 +605,11 @@ check: build/unit-tests bin/tortuosity build/fidelity-sweep build/scripts/fideli
 	@rm -rf build/check-prefix && $(MAKE) -s install PREFIX='$(CURDIR)/build/check-prefix' >build/check-install.log
 	@PYTHONPATH=build/check-prefix/$(PYTHON_DIR) /usr/bin/python3 tests/python-api.py bin/tortuosity \
 	  | tee build/python-api.log
+	@echo "== pip install of the package into a fresh virtual environment (tests/)"
+	@bash tests/pip-install.sh bin/tortuosity '$(CURDIR)' | tee build/pip-install.log
 	@awk '$(COUNT_LINE) { p += $$(NF - 3); f += $$(NF - 1) } \
 	      END { printf "check: %d passed, %d failed\n", p, f; exit f > 0 }' \
-	      build/unit-tests.log build/end-to-end.log build/reliability.log build/python-api.log
+	      build/unit-tests.log build/end-to-end.log build/reliability.log build/python-api.log build/pip-install.log
 
 # The same suite with AddressSanitizer and UndefinedBehaviorSanitizer; any report is fatal.
 # The sanitizer build is also the baseline x86-64 build (no AVX2 clones of the hot loops): its
@@ -853,7 +868,7 @@ PACKAGES_report   := gnuplot-nox r-base-core texlive-latex-base texlive-latex-re
 # What the end-to-end checks compare with: VTK's own readers, h5py's files, pandas and R for the
 # provenance sidecar, man for the manual page, GNU time for peak memory.
 PACKAGES_test     := python3-vtk9 python3-pandas python3-numpy python3-h5py r-base-core man-db groff-base time \
-                     locales strace
+                     locales strace python3-venv python3-pip python3-setuptools python3-wheel
 PACKAGES_fuzz     := clang libclang-rt-14-dev
 PACKAGES_bench    := linux-perf time
 PACKAGES_parallel := parallel

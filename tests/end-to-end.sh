@@ -403,13 +403,15 @@ check "options that do not apply (--null, --uncertainty outside metrics) are ref
 # A SlicerVMTK curve whose control point was deleted after its radii were measured: one Radius value
 # too many. Slicer loads it without radii; so does the reader, with a warning, and the curve is measured.
 slicer_radius_mismatch() {
-  local cps="" radii="" i
-  for i in 0 1 2 3 4 5 6 7 8 9 10 11 12; do
-    cps+="${cps:+,}{\"id\": \"$((i + 1))\", \"position\": [$(awk -v t=$i 'BEGIN { printf "%.6f, %.6f, %.6f", 10 * cos(t / 4), 10 * sin(t / 4), t }')], \"positionStatus\": \"defined\"}"
-    radii+="${radii:+, }1.5"
-  done
-  printf '{"markups": [{"type": "Curve", "coordinateSystem": "LPS", "coordinateUnits": "mm", "controlPoints": [%s], "measurements": [{"name": "Radius", "controlPointValues": [%s, 1.5]}]}]}\n' \
-    "$cps" "$radii" >"$work/deleted.mrk.json"
+  awk 'BEGIN {
+    printf "{\"markups\": [{\"type\": \"Curve\", \"coordinateSystem\": \"LPS\", \"coordinateUnits\": \"mm\", "
+    printf "\"controlPoints\": ["
+    for (i = 0; i < 13; i++)
+      printf "%s{\"id\": \"%d\", \"position\": [%.6f, %.6f, %.6f], \"positionStatus\": \"defined\"}",
+             i ? ", " : "", i + 1, 10 * cos(i / 4), 10 * sin(i / 4), i
+    printf "], \"measurements\": [{\"name\": \"Radius\", \"controlPointValues\": ["
+    for (i = 0; i < 14; i++) printf "%s1.5", i ? ", " : ""
+    print "]}]}]}" }' >"$work/deleted.mrk.json"
   "$T" metrics -r 1 "$work/deleted.mrk.json" >"$work/deleted.tsv" 2>"$work/deleted.err" || { cat "$work/deleted.err"; return 1; }
   grep -q 'Radius measurement has 14 values for 13 control points; read without radii' "$work/deleted.err" || return 1
   awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i } NR == 2 { exit !($c["status"] == "ok" && $c["r_mean"] == "") }' \
