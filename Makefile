@@ -865,10 +865,11 @@ PACKAGES_build    := make gcc libc6-dev binutils git noweb libgsl-dev libexpat1-
                      libhdf5-dev pkg-config
 PACKAGES_report   := gnuplot-nox r-base-core texlive-latex-base texlive-latex-recommended \
                      texlive-fonts-recommended lmodern poppler-utils
-# What the end-to-end checks compare with: VTK's own readers, h5py's files, pandas and R for the
-# provenance sidecar, man for the manual page, GNU time for peak memory.
+# What the end-to-end checks compare with: VTK's own readers (and its rendering, in Xvfb), h5py's
+# files, pandas and R for the provenance sidecar, man for the manual page, GNU time for peak memory,
+# pip and venv for the Python package.
 PACKAGES_test     := python3-vtk9 python3-pandas python3-numpy python3-h5py r-base-core man-db groff-base time \
-                     locales strace python3-venv python3-pip python3-setuptools python3-wheel
+                     locales strace python3-venv python3-pip python3-setuptools python3-wheel xvfb xauth
 PACKAGES_fuzz     := clang libclang-rt-14-dev
 PACKAGES_bench    := linux-perf time
 PACKAGES_parallel := parallel

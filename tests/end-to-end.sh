@@ -755,6 +755,19 @@ if "$PYTHON" -c 'import vtk' 2>/dev/null; then
       && "$PYTHON" "$(dirname "${BASH_SOURCE[0]}")/vtk-roundtrip.py" vmtk "$work/rt.vtp" "$work/rt.tsv"
   }
   check "metrics --vtk-names vmtk -o .vtp: VMTK's array names, a Radius array, vtkThreshold keeps one rate" vtp_vmtk
+  # The default colouring of a .vtp is the window's curvature at every rate, and a BraVa tree renders
+  # (VTK offscreen, under xvfb-run: its window needs an X server).
+  vtp_render() {
+    local input=("$@")
+    "$T" metrics -q "${input[@]}" >"$work/render.tsv" && "$T" metrics -q -o "$work/render.vtp" "${input[@]}" \
+      && xvfb-run -a "$PYTHON" "$(dirname "${BASH_SOURCE[0]}")/vtk-render.py" "$work/render.vtp" "$work/render.tsv"
+  }
+  check "metrics -o .vtp: the active scalar is the window's curvature, its range the window's at every rate; it renders" \
+    vtp_render "$work/short-first.txt"
+  if [ -n "${DATA_DIR:-}" ] && [ -f "$DATA_DIR/brava-vessmorphovis/BG04.CNG.swc" ]; then
+    check "a BraVa tree's .vtp renders offscreen in colour, coloured by the window's curvature" \
+      vtp_render --units mm "$DATA_DIR/brava-vessmorphovis/BG04.CNG.swc"
+  fi
   check "36 .vtp/.vtk files in every encoding VTK writes: read as VTK reads them" \
     bash -c "'$PYTHON' '$(dirname "${BASH_SOURCE[0]}")/vtk-fixtures.py' '$T' '$work/vtk-fixtures' >'$work/vtk-fixtures.log' \
              || { tail -3 '$work/vtk-fixtures.log'; exit 1; }"
