@@ -538,8 +538,9 @@ build/paper.tex: paper.nw | $(TOOLS_report)
 # FORCE_SOURCE_DATE: the date on the page and in the PDF is SOURCE_DATE_EPOCH's, not the build day's.
 # A pass is run again while it changed what the next one reads (the cross-references, the contents,
 # the bookmarks) or its log asks for it, at most PDFLATEX_PASSES in all: a warm build whose pages
-# did not move takes one pass, a cold one three.
-PDFLATEX_PASSES := 5
+# did not move takes one pass, a cold one four (chunks that break across pages move with the
+# page numbers the cross-references print).
+PDFLATEX_PASSES := 8
 PDFLATEX_READS  := paper.aux paper.toc paper.out
 define run_pdflatex
 cd build && for pass in $$(seq $(PDFLATEX_PASSES)); do \
