@@ -431,6 +431,19 @@ units_warned() {
   return 0
 }
 check "coordinates in the wrong unit (a vessel longer than a body, or steps of nanometres) are warned of" units_warned
+# TubeTK's tortuosity tests (VesselView's TortuosityLogicTests): a sine tube, y = sin x over one
+# period in 1,000 points. The package's polyline (--rates raw --trim 0) gives TubeTK's distance metric
+# (1.21581) and inflection count metric (2 x 1.21581) to its 4 decimals, and TubeTK's filter's sum of
+# angles on the same points, 0.4117 (the test's own expectation, 0.4112, is older than the filter).
+tubetk_sine() {
+  awk 'BEGIN { for (i = 0; i < 1000; i++) { x = 8 * atan2(1, 1) * i / 1000; printf "%.17g %.17g 0\n", x, sin(x) } }' \
+    >"$work/sine-tube.txt"
+  "$T" metrics -q --rates raw --trim 0 "$work/sine-tube.txt" \
+    | awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i }
+                  NR == 2 { printf "  sine tube: D %.5f, IC_N %.5f, SOA %.5f\n", $c["D"], $c["IC_N"], $c["SOA"]
+                            exit !(sprintf("%.4f %.4f %.4f", $c["D"], $c["IC_N"], $c["SOA"]) == "1.2158 2.4316 0.4117") }'
+}
+check "TubeTK's sine tube at the raw rate: its distance and inflection count metrics, its filter's sum of angles" tubetk_sine
 # A voxel path: two turns of a helix (radius 3.296 mm, pitch 0.3 of it; curvature 0.2783 /mm)
 # traced through voxels of 0.824 x 0.824 x 1 mm, each point a voxel's centre. Given the voxels
 # (--precision), the fit does not climb their staircase: AC within 5% at 10X; without them GCV's
