@@ -31,7 +31,7 @@ SHELL := /bin/bash
 MAKEFLAGS += --no-builtin-rules
 
 # The tools stages (their Debian packages are listed at the end): TOOLS_build, TOOLS_report, ...
-TOOL_STAGES := build report test fuzz bench parallel
+TOOL_STAGES := build report test fuzz bench parallel peers
 $(foreach s,$(TOOL_STAGES),$(eval TOOLS_$(s) := build/.tools-$(s)))
 
 DATA_DIR ?= ../shared/data
@@ -82,7 +82,8 @@ SCRIPTS := scripts/analysis.R scripts/phantom-tables.R scripts/recon-error.gp sc
            scripts/profile-filtered.gp scripts/aorta-profile.gp scripts/interfaces.awk scripts/slurm-shards.sh \
            scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk \
            scripts/structure.sh scripts/modules.awk scripts/concordance-tsv.awk scripts/concordance-table.awk \
-           scripts/metrics-table.awk scripts/phantom-truth.awk scripts/fidelity.awk
+           scripts/metrics-table.awk scripts/phantom-truth.awk scripts/fidelity.awk scripts/peers.R scripts/peers.awk \
+           scripts/peer-table.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end \
            python/tortuosity.py setup.py pyproject.toml
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
@@ -401,7 +402,7 @@ DATA_TSVS      := results/recon-error.tsv results/recon-length.tsv results/perce
 PHANTOM_TABLES := results/phantom-table.tex results/phantom-paper-tables.tex
 PHANTOM_TSVS   := results/phantom-table1.tsv results/phantom-table2.tsv results/phantom-tableS1.tsv \
                   results/phantom-sensitivity.tsv results/phantom-reading.tsv
-RESULT_TABLES  := $(DATA_TABLES) $(PHANTOM_TABLES) results/fidelity-table.tex results/numbers.tex
+RESULT_TABLES  := $(DATA_TABLES) $(PHANTOM_TABLES) results/fidelity-table.tex results/numbers.tex results/peer-table.tex
 RESULT_TSVS    := $(DATA_TSVS) $(PHANTOM_TSVS)
 SOA_POINTS     := build/results/soa-acct-points.tsv
 SUMMARY_TMP    := build/results/summary.tmp
@@ -453,6 +454,35 @@ results/fidelity-table.tex: build/results/numbers-fidelity.tex
 .PHONY: fidelity
 fidelity: results/fidelity.tsv results/fidelity-table.tex
 	@awk -v summary=1 -f build/scripts/fidelity.awk build/fidelity/truth.tsv build/fidelity/measured.tsv
+
+# The authors' R code beside the package (report, "The authors' code beside this package"): its own
+# calls on the Angicart sample (1, 2, 10 points/um) and the three phantoms (1, 2, 10 points/mm), the
+# package at the same densities, and their comparison. Not part of reproduce: results/peer-*.tsv and
+# the report's table are committed, and remade by 'make peers'.
+PEER_DIR      ?= $(DATA_DIR)/../peers/tortuosity_R/code_and_sample_data
+PEER_FIT      := --trim 0 --penalty-order 2
+build/peers/phantoms.txt: bin/tortuosity
+	@mkdir -p $(@D)
+	for s in semicircle helix salkowski; do ./bin/tortuosity phantom --shape $$s; echo; done >$@
+build/peers/phantoms-peer.tsv: build/scripts/peers.R build/peers/phantoms.txt | $(TOOLS_peers)
+	Rscript build/scripts/peers.R '$(PEER_DIR)' build/peers/phantoms.txt 1,2,10 $@ 2>/dev/null
+build/peers/phantoms-package.tsv: build/peers/phantoms.txt bin/tortuosity
+	./bin/tortuosity metrics -q $(PEER_FIT) --rates 1/mm,2/mm,10/mm -o $@ $<
+build/peers/angicart-peer.tsv: build/scripts/peers.R bin/tortuosity build/data/mouse-angicart.sha256 | $(TOOLS_peers)
+	@mkdir -p $(@D)
+	@$(call dataset_files,mouse-angicart); Rscript build/scripts/peers.R '$(PEER_DIR)' "$${files[0]}" 1,2,10 $@ 2>/dev/null
+build/peers/angicart-package.tsv: bin/tortuosity build/data/mouse-angicart.sha256
+	@mkdir -p $(@D)
+	@$(call dataset_files,mouse-angicart); ./bin/tortuosity metrics -q $(PEER_FIT) --rates 1000/mm,2000/mm,10000/mm \
+	  -o $@ "$${files[0]}"
+results/peer-angicart.tsv: build/scripts/peers.awk build/peers/angicart-peer.tsv build/peers/angicart-package.tsv
+	awk -v scale=0.001 -f $^ >$@.tmp && mv $@.tmp $@
+results/peer-phantoms.tsv: build/scripts/peers.awk build/peers/phantoms-peer.tsv build/peers/phantoms-package.tsv
+	awk -v scale=1 -v truth=1 -f $^ >$@.tmp && mv $@.tmp $@
+.PHONY: peers
+peers: results/peer-angicart.tsv results/peer-phantoms.tsv build/scripts/peer-table.awk
+	awk -f build/scripts/peer-table.awk results/peer-angicart.tsv results/peer-phantoms.tsv >results/peer-table.tex.tmp
+	mv results/peer-table.tex.tmp results/peer-table.tex
 
 # The report's numbers, the phantoms' first.
 results/numbers.tex: build/results/numbers-phantoms.tex build/results/numbers-data.tex build/results/numbers-fidelity.tex
@@ -870,10 +900,13 @@ PACKAGES_report   := gnuplot-nox r-base-core texlive-latex-base texlive-latex-re
 # files, pandas and R for the provenance sidecar, man for the manual page, GNU time for peak memory,
 # pip and venv for the Python package.
 PACKAGES_test     := python3-vtk9 python3-pandas python3-numpy python3-h5py r-base-core man-db groff-base time \
-                     locales strace python3-venv python3-pip python3-setuptools python3-wheel xvfb xauth
+                     locales strace python3-venv python3-pip python3-setuptools python3-wheel xvfb xauth \
+                     r-cran-mgcv r-cran-pracma
 PACKAGES_fuzz     := clang libclang-rt-14-dev
 PACKAGES_bench    := linux-perf time
 PACKAGES_parallel := parallel
+# The authors' R code (make peers): R and the CRAN packages it loads, as Debian packages.
+PACKAGES_peers    := r-base-core r-cran-mgcv r-cran-pracma
 
 # $(call ensure_packages,PACKAGES): install those of PACKAGES that dpkg does not list as installed.
 define ensure_packages

@@ -444,6 +444,24 @@ tubetk_sine() {
                             exit !(sprintf("%.4f %.4f %.4f", $c["D"], $c["IC_N"], $c["SOA"]) == "1.2158 2.4316 0.4117") }'
 }
 check "TubeTK's sine tube at the raw rate: its distance and inflection count metrics, its filter's sum of angles" tubetk_sine
+# The authors' R code on one phantom (make peers runs it on all): the helix at 10 points/mm, with its
+# own calls; its curvature is 5/3 n/(n-1) of the truth (its first-derivative stencil, a step L/n).
+PEER_DIR=${DATA_DIR:+$DATA_DIR/../peers/tortuosity_R/code_and_sample_data}
+if [ -n "${REPO:-}" ] && [ -n "$PEER_DIR" ] && [ -d "$PEER_DIR" ]; then
+  peer_on_helix() {
+    make -s -C "$REPO" build/scripts/peers.R >/dev/null || return 1
+    "$T" phantom --shape helix >"$work/peer-helix.txt" || return 1
+    Rscript "$REPO/build/scripts/peers.R" "$PEER_DIR" "$work/peer-helix.txt" 10 "$work/peer-helix.tsv" 2>/dev/null \
+      || return 1
+    awk -F'\t' 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i }
+                NR == 2 { want = 5 / 3 * $c["n"] / ($c["n"] - 1)
+                          printf "  the peer on the helix: AC %.4f, %.4f times the truth 0.2 (5/3 n/(n-1) = %.4f)\n",
+                                 $c["AC"], $c["AC"] / 0.2, want
+                          exit !($c["status"] == "ok" && ($c["AC"] / 0.2) / want > 0.99 && ($c["AC"] / 0.2) / want < 1.01) }' \
+      "$work/peer-helix.tsv"
+  }
+  check "the authors' R code on the helix phantom: its curvature 5/3 n/(n-1) of the truth, as the report says" peer_on_helix
+fi
 # A voxel path: two turns of a helix (radius 3.296 mm, pitch 0.3 of it; curvature 0.2783 /mm)
 # traced through voxels of 0.824 x 0.824 x 1 mm, each point a voxel's centre. Given the voxels
 # (--precision), the fit does not climb their staircase: AC within 5% at 10X; without them GCV's
