@@ -766,12 +766,12 @@ if "$PYTHON" -c 'import vtk' 2>/dev/null; then
   "$T" phantom --shape helix --count 2 -o "$work/helices.txt"
   vtp_roundtrip() {   # profile|metrics OPTIONS...: the .vtp and the table of the same command agree
     local mode=$1; shift
-    "$T" "$mode" -q "$@" >"$work/rt.tsv" && "$T" "$mode" -q -o "$work/rt.vtp" "$@" \
+    "$T" "$mode" -q "$@" >"$work/rt.tsv" && "$T" "$mode" -q --vtk-names ours -o "$work/rt.vtp" "$@" \
       && "$PYTHON" "$(dirname "${BASH_SOURCE[0]}")/vtk-roundtrip.py" "$mode" "$work/rt.vtp" "$work/rt.tsv"
   }
-  check "profile -o .vtp: vtkXMLPolyDataReader reads every point array as the table has it" \
+  check "profile --vtk-names ours -o .vtp: vtkXMLPolyDataReader reads every point array as the table has it" \
     vtp_roundtrip profile --rate 10 "$work/salk.txt"
-  check "metrics -o .vtp: every row is a cell with the row's values" \
+  check "metrics --vtk-names ours -o .vtp: every row is a cell with the row's values" \
     vtp_roundtrip metrics --rates 1,2/mm,10,raw "$work/helices.txt" "$work/salk.txt"
   # The first vessel without samples (two points: no-curvature; four: too-short at 1X), then others:
   # VTK reads every piece, every row a cell, with the same arrays.
@@ -782,10 +782,10 @@ if "$PYTHON" -c 'import vtk' 2>/dev/null; then
   "$T" phantom --shape helix --count 3 | awk 'NF { print $0, 0.5 + 0.001 * NR; next } { print }' >"$work/radii-helices.txt"
   vtp_vmtk() {
     "$T" metrics -q "$work/radii-helices.txt" >"$work/rt.tsv" \
-      && "$T" metrics -q --vtk-names vmtk -o "$work/rt.vtp" "$work/radii-helices.txt" \
+      && "$T" metrics -q -o "$work/rt.vtp" "$work/radii-helices.txt" \
       && "$PYTHON" "$(dirname "${BASH_SOURCE[0]}")/vtk-roundtrip.py" vmtk "$work/rt.vtp" "$work/rt.tsv"
   }
-  check "metrics --vtk-names vmtk -o .vtp: VMTK's array names, a Radius array, vtkThreshold keeps one rate" vtp_vmtk
+  check "metrics -o .vtp: VMTK's array names by default, a Radius array, vtkThreshold keeps one rate" vtp_vmtk
   # The default colouring of a .vtp is the window's curvature at every rate, and a BraVa tree renders
   # (VTK offscreen, under xvfb-run: its window needs an X server).
   vtp_render() {

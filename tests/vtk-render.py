@@ -29,7 +29,7 @@ def main(vtp, tsv):
     if scalars is None or scalars.GetName() != "curvature_in_window":
         return "the active point scalar is %s, not curvature_in_window" % (scalars and scalars.GetName())
     active = numpy_support.vtk_to_numpy(scalars)
-    kappa = numpy_support.vtk_to_numpy(data.GetPointData().GetArray("curvature"))
+    kappa = numpy_support.vtk_to_numpy(data.GetPointData().GetArray("Curvature"))
     window = numpy_support.vtk_to_numpy(data.GetPointData().GetArray("in_window")) == 1
     rate = numpy_support.vtk_to_numpy(data.GetCellData().GetArray("rate"))
     points_of = {}                                   # rate -> the point ids of its cells

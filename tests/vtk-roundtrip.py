@@ -4,7 +4,7 @@ compare every array with the table the same command writes.
 
   vtk-roundtrip.py profile FILE.vtp FILE.tsv   point arrays against 'profile' columns
   vtk-roundtrip.py metrics FILE.vtp FILE.tsv   cell arrays against 'metrics' rows
-  vtk-roundtrip.py vmtk FILE.vtp FILE.tsv      --vtk-names vmtk: names, Radius, a threshold on rate
+  vtk-roundtrip.py vmtk FILE.vtp FILE.tsv      the default names (VMTK's), Radius, a threshold on rate
 
 The tables print 9 significant digits, the .vtp keeps doubles: numbers must agree to
 1e-8 relative, an empty field must be NaN, strings must be equal. Exit status 0 when
@@ -112,7 +112,7 @@ def check_metrics(poly, rows):
 
 
 def check_vmtk(poly, rows):
-    """--vtk-names vmtk on vessels with radii: VMTK's array names, a Radius array, and
+    """The default names on vessels with radii: VMTK's array names, a Radius array, and
     vtkThreshold on the numeric rate keeps exactly the cells of one rate."""
     pd = poly.GetPointData()
     for name in ("Abscissas", "Curvature", "Torsion", "FrenetTangent", "FrenetNormal", "FrenetBinormal",
