@@ -477,11 +477,26 @@ build/peers/angicart-package.tsv: bin/tortuosity build/data/mouse-angicart.sha25
 	  -o $@ "$${files[0]}"
 results/peer-angicart.tsv: build/scripts/peers.awk build/peers/angicart-peer.tsv build/peers/angicart-package.tsv
 	awk -v scale=0.001 -f $^ >$@.tmp && mv $@.tmp $@
+# The peer's frame and metrics alone on the package's own samples (not its fit), per density in points/um.
+PEER_DENSITIES := 1 2 10
+build/peers/angicart-samples-%.txt: bin/tortuosity build/data/mouse-angicart.sha256
+	@mkdir -p $(@D)
+	@$(call dataset_files,mouse-angicart); ./bin/tortuosity profile -q $(PEER_FIT) --vessel all --rate $*000/mm \
+	  "$${files[0]}" >$@.tmp && mv $@.tmp $@
+build/peers/angicart-samples-peer-%.tsv: build/scripts/peers.R build/peers/angicart-samples-%.txt | $(TOOLS_peers)
+	Rscript build/scripts/peers.R '$(PEER_DIR)' build/peers/angicart-samples-$*.txt $* $@ samples 1000 2>/dev/null
+build/peers/angicart-samples-peer.tsv: $(PEER_DENSITIES:%=build/peers/angicart-samples-peer-%.tsv)
+	awk 'FNR > 1 || NR == 1' $^ >$@.tmp && mv $@.tmp $@
+results/peer-angicart-samples.tsv: build/scripts/peers.awk build/peers/angicart-samples-peer.tsv \
+                                   build/peers/angicart-package.tsv
+	awk -v scale=0.001 -f $^ >$@.tmp && mv $@.tmp $@
 results/peer-phantoms.tsv: build/scripts/peers.awk build/peers/phantoms-peer.tsv build/peers/phantoms-package.tsv
 	awk -v scale=1 -v truth=1 -f $^ >$@.tmp && mv $@.tmp $@
 .PHONY: peers
-peers: results/peer-angicart.tsv results/peer-phantoms.tsv build/scripts/peer-table.awk
-	awk -f build/scripts/peer-table.awk results/peer-angicart.tsv results/peer-phantoms.tsv >results/peer-table.tex.tmp
+peers: results/peer-angicart.tsv results/peer-angicart-samples.tsv results/peer-phantoms.tsv \
+       build/scripts/peer-table.awk
+	awk -f build/scripts/peer-table.awk results/peer-angicart.tsv results/peer-angicart-samples.tsv \
+	  results/peer-phantoms.tsv >results/peer-table.tex.tmp
 	mv results/peer-table.tex.tmp results/peer-table.tex
 
 # The report's numbers, the phantoms' first.
