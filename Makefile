@@ -71,10 +71,11 @@ API_MODULES    := tortuosity                      # the library's public interfa
 # The command line by job (each calls only those before it): text buffers, atomic output and
 # provenance, the table and VTK writers, the stream of windows and shards, the commands.
 CLI_MODULES    := textbuf suggest output writers stream cli
-HEADERS := $(addprefix build/src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)))
+PLAIN_HEADERS  := geom.h formats.h pspline-types.h tortuosity.h   # headers of types alone, without a .c
+HEADERS := $(addprefix build/src/,$(PLAIN_HEADERS) $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)))
 LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
 CLI_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(CLI_MODULES)))
-C_ROOTS := $(addprefix src/,geom.h formats.h tortuosity.h $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)) \
+C_ROOTS := $(addprefix src/,$(PLAIN_HEADERS) $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)) \
              $(addsuffix .c,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES) $(CLI_MODULES)) \
              unit-tests.c fuzz-readers.c fidelity-sweep.c)
 SCRIPTS := scripts/analysis.R scripts/phantom-tables.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
@@ -118,6 +119,11 @@ bin/tortuosity: $(CLI_OBJ) $(LIB_OBJ) | $(TOOLS_build)
 
 build/unit-tests: build/obj/unit-tests.o $(LIB_OBJ) build/obj/textbuf.o | $(TOOLS_build)
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+# A unit test registers itself by its definition: the program runs every 'static void test_NAME(void)'
+# of its source, in order.
+build/src/unit-test-list.h: build/src/unit-tests.c
+	sed -n 's/^static void \(test_[a-z0-9_]*\)(void)$$/RUN(\1);/p' $< | cpif $@
+build/obj/unit-tests.o build/sanitize/unit-tests.o: build/src/unit-test-list.h
 
 # ---------------------------------------------------------------- library, manual page, installation
 # libtortuosity.a: the modules as one object in which only the tort_ names of tortuosity.h stay global.
@@ -774,7 +780,7 @@ lint: build/scripts/tools-lint.sh build/scripts/shell-commands.awk build/scripts
 	@diff <(noroots paper.nw | sed 's/^<<\(.*\)>>$$/\1/' | sort) <(printf '%s\n' $(ROOTS) | sort) \
 	  && echo "lint: chunk roots match the Makefile" \
 	  || { echo "lint: roots of paper.nw ('<') differ from the Makefile ('>'); a misspelled chunk name?"; exit 1; }
-	@bash build/scripts/structure.sh paper.nw $(CLI_OBJ) $(LIB_OBJ)
+	@METHOD='$(MODULES)' bash build/scripts/structure.sh paper.nw $(CLI_OBJ) $(LIB_OBJ)
 	@bash build/scripts/tools-lint.sh '$(MAKE)' build/scripts/shell-commands.awk \
 	  $(foreach s,$(TOOL_STAGES),'$(s)=$(PACKAGES_$(s))')
 

@@ -72,6 +72,24 @@ if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
   }
   check "make lint's shape check names a loop of calls, a C file over 1,000 lines and a chunk over 120" \
     structure_finds_what_is_wrong
+  # ... and a header that includes one from above it (d.h includes c.h, while c.c calls d.c), and a
+  # file of the method (METHOD) over 500 lines.
+  structure_finds_upward_include() {
+    local d=$work/structure-up
+    mkdir -p "$d/build/src" && cd "$d" || return 1
+    { printf 'int d(int);\nint c(int x) { return d(x);\n'; for i in $(seq 500); do echo; done; echo '}'; } >build/src/c.c
+    printf 'int d(int x) { return x; }\n' >build/src/d.c
+    printf '#include "c.h"\n' >build/src/d.h; : >build/src/c.h
+    cc -c -o c.o build/src/c.c && cc -c -o d.o build/src/d.c || { cd - >/dev/null; return 1; }
+    echo '@' >doc.nw
+    ! METHOD='c' bash "$REPO/build/scripts/structure.sh" doc.nw c.o d.o >out.txt 2>&1
+    local failed=$?
+    cd - >/dev/null
+    [ $failed = 0 ] && grep -q 'build/src/d.h includes c.h, a module above it' "$d/out.txt" \
+      && grep -q 'build/src/c.c: 503 lines, more than 500' "$d/out.txt" || { cat "$d/out.txt"; return 1; }
+  }
+  check "make lint's shape check names a header that includes one from above it and a method file over 500 lines" \
+    structure_finds_upward_include
 
   # make install into a temporary prefix (and staged under DESTDIR); the manual page renders;
   # a C program built with pkg-config reads a file and measures a circle through the library.
