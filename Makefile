@@ -121,7 +121,7 @@ build/unit-tests: build/obj/unit-tests.o $(LIB_OBJ) build/obj/textbuf.o | $(TOOL
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 # A unit test registers itself by its definition: the program runs every 'static void test_NAME(void)'
 # of its source, in order.
-build/src/unit-test-list.h: build/src/unit-tests.c
+build/src/unit-test-list.h: build/src/unit-tests.c | $(TOOLS_build)
 	sed -n 's/^static void \(test_[a-z0-9_]*\)(void)$$/RUN(\1);/p' $< | cpif $@
 build/obj/unit-tests.o build/sanitize/unit-tests.o: build/src/unit-test-list.h
 
