@@ -72,11 +72,12 @@ API_MODULES    := tortuosity                      # the library's public interfa
 # provenance, the table and VTK writers, the stream of windows and shards, the commands.
 CLI_MODULES    := textbuf suggest output writers stream cli
 PLAIN_HEADERS  := geom.h formats.h pspline-types.h tortuosity.h   # headers of types alone, without a .c
+LIB_MODULES := $(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)   # the library
 HEADERS := $(addprefix build/src/,$(PLAIN_HEADERS) $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)))
-LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+LIB_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(LIB_MODULES)))
 CLI_OBJ := $(addprefix build/obj/,$(addsuffix .o,$(CLI_MODULES)))
 C_ROOTS := $(addprefix src/,$(PLAIN_HEADERS) $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)) \
-             $(addsuffix .c,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES) $(CLI_MODULES)) \
+             $(addsuffix .c,$(LIB_MODULES) $(CLI_MODULES)) \
              unit-tests.c fuzz-readers.c fidelity-sweep.c)
 SCRIPTS := scripts/analysis.R scripts/phantom-tables.R scripts/recon-error.gp scripts/percent-shift.gp scripts/soa-acct.gp \
            scripts/profile.gp scripts/territories.gp scripts/data-views.gp scripts/frame.gp \
@@ -84,7 +85,8 @@ SCRIPTS := scripts/analysis.R scripts/phantom-tables.R scripts/recon-error.gp sc
            scripts/man-commands.awk scripts/bench-stages.awk scripts/tools-lint.sh scripts/shell-commands.awk \
            scripts/structure.sh scripts/modules.awk scripts/concordance-tsv.awk scripts/concordance-table.awk \
            scripts/metrics-table.awk scripts/phantom-truth.awk scripts/fidelity.awk scripts/peers.R scripts/peers.awk \
-           scripts/peer-table.awk
+           scripts/peer-table.awk scripts/median.awk scripts/segments.awk scripts/bench.sh scripts/bench-shards.sh \
+           scripts/memory.sh
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end \
            python/tortuosity.py setup.py pyproject.toml
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
@@ -138,7 +140,7 @@ build/lib/libtortuosity.a: $(LIB_OBJ) | $(TOOLS_build)
 # the tort_ names global. Its soname changes when tortuosity.h changes incompatibly.
 SOVERSION := 1
 SHARED_LIB := build/lib/libtortuosity.so.$(VERSION)
-PIC_OBJ := $(addprefix build/pic/,$(addsuffix .o,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+PIC_OBJ := $(addprefix build/pic/,$(addsuffix .o,$(LIB_MODULES)))
 build/pic/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
 	@mkdir -p $(dir $@)
 	$(CC) $(CFLAGS) -fPIC -Ibuild/src $(HDF5_CFLAGS) -c -o $@ $<
@@ -668,7 +670,7 @@ check: build/unit-tests bin/tortuosity build/fidelity-sweep build/scripts/fideli
 # end-to-end tests compare its output with bin/tortuosity's, byte for byte (REFERENCE).
 SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all \
              -DTORTUOSITY_BASELINE_ONLY
-SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)))
+SAN_OBJ   := $(addprefix build/sanitize/,$(addsuffix .o,$(LIB_MODULES)))
 SAN_CC     = $(CC) $(filter-out -O%,$(CFLAGS)) $(SAN_FLAGS)
 
 build/sanitize/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
@@ -698,7 +700,7 @@ check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity bin/tortuosi
 # build/fuzz/. The formats, their seeds (shell globs under DATA_DIR) and their longest inputs are
 # the table's (tortuosity --list-formats): a new format is fuzzed without a line here.
 FUZZ_SECONDS ?= 150
-LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES)))
+LIB_SOURCES  := $(addprefix build/src/,$(addsuffix .c,$(filter-out $(API_MODULES),$(LIB_MODULES))))
 format_field  = ./bin/tortuosity --list-formats | awk -F'\t' -v f='$(1)' '$$1 == f { print $$$(2) }'
 
 build/fuzz/fuzz-%: build/src/fuzz-readers.c $(LIB_SOURCES) $(HEADERS) | $(TOOLS_fuzz)
@@ -776,6 +778,7 @@ sharded: bin/tortuosity | $(TOOLS_parallel)
 # ---------------------------------------------------------------- lint, benchmark, clean
 .PHONY: lint
 lint: build/scripts/tools-lint.sh build/scripts/shell-commands.awk build/scripts/structure.sh $(CLI_OBJ) $(LIB_OBJ) \
+      $(addprefix build/,$(filter %.sh,$(SCRIPTS))) \
     | $(foreach s,$(TOOL_STAGES),$(TOOLS_$(s)))
 	@diff <(noroots paper.nw | sed 's/^<<\(.*\)>>$$/\1/' | sort) <(printf '%s\n' $(ROOTS) | sort) \
 	  && echo "lint: chunk roots match the Makefile" \
@@ -790,76 +793,21 @@ BENCH_FILES = $(wildcard $(DATA_DIR)/brava-3darteryvis/allscans/*/*.swc)
 BENCH_RUNS ?= 5
 BENCH_SEGMENTS ?= 20000       # generated noisy helix arcs of ten points, for the cost model
 BENCH_RUN   = ./bin/tortuosity metrics -q --rates $(RATE_LIST) --units mm $(BENCH_FILES)
+# With BENCH_BASELINE=path/to/an/older/tortuosity: that program and this one in turn (A B A B) on two
+# threads, BENCH_RUNS pairs, each pair's ratio and their median, and whether they give the same bytes.
 .PHONY: bench bench-stages
-bench: bin/tortuosity
-	@rm -f build/bench.tsv; \
-	for j in 1 2; do \
-	  times=; \
-	  for r in $$(seq $(BENCH_RUNS)); do \
-	    start=$$(date +%s.%N); $(BENCH_RUN) --jobs $$j >build/bench-run.tsv; end=$$(date +%s.%N); \
-	    times="$$times $$(awk -v a=$$start -v b=$$end 'BEGIN { printf "%.2f", b - a }')"; \
-	    [ -f build/bench.tsv ] || cp build/bench-run.tsv build/bench.tsv; \
-	    cmp -s build/bench.tsv build/bench-run.tsv || { echo "bench: run $$r on $$j thread(s) gave other bytes"; exit 1; }; \
-	  done; \
-	  echo "bench: BraVa $$(($$(wc -l <build/bench.tsv) - 1)) vessel-rates, $$j thread(s):$$times s, median" \
-	       "$$(printf '%s\n' $$times | sort -n | awk '{ t[NR] = $$1 } \
-	           END { printf "%.2f", NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2 }') s"; \
-	done; \
-	echo "bench: all $$((2 * $(BENCH_RUNS))) runs gave the same bytes"
-	@$(if $(BENCH_BASELINE),$(bench_against_baseline))
-	@awk -v n=$(BENCH_SEGMENTS) 'BEGIN { srand(1); for (i = 0; i < n; i++) { for (k = 0; k < 10; k++) \
-	    printf "%.4f %.4f %.4f\n", 2 * cos(0.3 * k) + 0.05 * rand(), 2 * sin(0.3 * k) + 0.05 * rand(), \
-	           0.3 * k + 0.05 * rand(); print "" } }' >build/bench-segments.txt
-	@start=$$(date +%s.%N); \
-	./bin/tortuosity metrics -q --jobs 2 --rates $(RATE_LIST) build/bench-segments.txt >build/bench-run.tsv; \
-	end=$$(date +%s.%N); \
-	awk -v a=$$start -v b=$$end -v n=$(BENCH_SEGMENTS) 'BEGIN { s = b - a; core = 2 * s / n; \
-	  printf "bench: %d ten-point segments, 2 threads: %.2f s (%.3f core-ms each); 10^7 segments: %.0f core-s," \
-	         " %.1f min on 8 machines of 2 cores\n", n, s, 1e3 * core, 1e7 * core, 1e7 * core / 16 / 60 }'
-	@rm -f build/bench-run.tsv build/bench-segments.txt
-
-# With BENCH_BASELINE=path/to/an/older/tortuosity: that program and this one in turn (A B A B) on
-# two threads, BENCH_RUNS pairs; each pair's ratio (this / baseline) and their median, and whether
-# the two give the same bytes.
-define bench_against_baseline
-ratios=; for r in $$(seq $(BENCH_RUNS)); do \
-  a=$$(date +%s.%N); $(subst ./bin/tortuosity,'$(BENCH_BASELINE)',$(BENCH_RUN)) --jobs 2 >build/bench-base.tsv; \
-  b=$$(date +%s.%N); $(BENCH_RUN) --jobs 2 >build/bench-run.tsv; c=$$(date +%s.%N); \
-  ratios="$$ratios $$(awk -v a=$$a -v b=$$b -v c=$$c 'BEGIN { printf "%.3f", (c - b) / (b - a) }')"; \
-done; \
-echo "bench: this / $(BENCH_BASELINE), 2 threads, pair by pair:$$ratios; median" \
-     "$$(printf '%s\n' $$ratios | sort -n | awk '{ t[NR] = $$1 } \
-         END { printf "%.3f", NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2 }')"; \
-cmp -s build/bench-base.tsv build/bench-run.tsv && echo "bench: the baseline gives the same bytes" \
-  || echo "bench: the baseline gives other bytes (diff build/bench-base.tsv build/bench-run.tsv)"
-endef
+bench: bin/tortuosity build/scripts/bench.sh build/scripts/median.awk build/scripts/segments.awk
+	@RUNS=$(BENCH_RUNS) SEGMENTS=$(BENCH_SEGMENTS) RATES=$(RATE_LIST) BASELINE='$(BENCH_BASELINE)' \
+	  bash build/scripts/bench.sh $(BENCH_FILES)
 
 # What a shard costs: the whole run, and its first and last shard of 8, on two threads (BENCH_RUNS
 # runs each, medians), on BENCH_SHARD_SEGMENTS generated ten-point segments in one plain-text file
 # and on BraVa's SWC trees at the paper's rates; a shard should cost an eighth.
 BENCH_SHARD_SEGMENTS ?= 200000
 .PHONY: bench-shards
-bench-shards: bin/tortuosity
-	@awk -v n=$(BENCH_SHARD_SEGMENTS) 'BEGIN { srand(1); for (i = 0; i < n; i++) { for (k = 0; k < 10; k++) \
-	    printf "%.4f %.4f %.4f\n", 2 * cos(0.3 * k) + 0.05 * rand(), 2 * sin(0.3 * k) + 0.05 * rand(), \
-	           0.3 * k + 0.05 * rand(); print "" } }' >build/bench-shards.txt
-	@for input in text SWC; do \
-	  for what in whole 1/8 8/8; do times=; \
-	    for r in $$(seq $(BENCH_RUNS)); do \
-	      a=$$(date +%s.%N); ./bin/tortuosity metrics -q --jobs 2 --rates $(RATE_LIST) --units mm \
-	        $$([ $$what = whole ] || echo --shard $$what) \
-	        $$([ $$input = text ] && echo build/bench-shards.txt || echo $(BENCH_FILES)) >/dev/null; \
-	      b=$$(date +%s.%N); times="$$times $$(awk -v a=$$a -v b=$$b 'BEGIN { printf "%.2f", b - a }')"; \
-	    done; \
-	    echo "$$input $$what $$(printf '%s\n' $$times | sort -n | awk '{ t[NR] = $$1 } \
-	           END { printf "%.2f", NR % 2 ? t[(NR + 1) / 2] : (t[NR / 2] + t[NR / 2 + 1]) / 2 }')"; \
-	  done; \
-	done | awk '{ m[$$1, $$2] = $$3 } END { for (i = 1; i <= 2; i++) { f = i == 1 ? "text" : "SWC"; \
-	         printf "bench-shards: %s, 2 threads: whole %.2f s, shard 1 of 8 %.2f s (%.3f of the whole), " \
-	         "shard 8 of 8 %.2f s (%.3f)\n", i == 1 ? "$(BENCH_SHARD_SEGMENTS) ten-point segments in one text file" \
-	         : "BraVa'"'"'s $(words $(BENCH_FILES)) SWC trees", m[f, "whole"], m[f, "1/8"], m[f, "1/8"] / m[f, "whole"], \
-	         m[f, "8/8"], m[f, "8/8"] / m[f, "whole"] } }'
-	@rm -f build/bench-shards.txt
+bench-shards: bin/tortuosity build/scripts/bench-shards.sh build/scripts/median.awk build/scripts/segments.awk
+	@RUNS=$(BENCH_RUNS) SEGMENTS=$(BENCH_SHARD_SEGMENTS) RATES=$(RATE_LIST) \
+	  bash build/scripts/bench-shards.sh $(BENCH_FILES)
 
 # Where one single-thread run of bench spends its time, stage by stage, per vessel and per output
 # sample: perf samples with their call stacks, each given to the innermost stage on its stack.
@@ -881,25 +829,9 @@ MEMORY_SIZES := 10000 100000 1000000
 MEMORY_LONG_POINTS := 1000000
 MEMORY_LONG_LIMIT_KB := 524288
 .PHONY: memory
-memory: bin/tortuosity | $(TOOLS_bench)
-	@for n in $(MEMORY_SIZES); do \
-	  awk -v n=$$n 'BEGIN { for (i = 0; i < n; i++) printf "%d 0 0\n%d 1 0\n\n", i, i }' >build/memory-$$n.txt; \
-	  /usr/bin/time -f "memory: $$n two-point vessels: peak RSS %M KB, %e s" \
-	    ./bin/tortuosity metrics -q --rates $(RATE_LIST) -o build/memory-$$n.tsv build/memory-$$n.txt; \
-	done; rm -f build/memory-*.txt build/memory-*.tsv*
-	@awk -v n=$(MEMORY_LONG_POINTS) 'BEGIN { pi = atan2(0, -1); for (i = 0; i < n; i++) { \
-	    t = 6 * pi * i / (n - 1); printf "%.6f %.6f %.6f\n", 5 * cos(t), 5 * sin(t), 10 * t / (2 * pi) } }' \
-	  >build/memory-long.txt
-	@/usr/bin/time -f "%M %e" -o build/memory-long.time \
-	  ./bin/tortuosity metrics -q --rates $(RATE_LIST) -o build/memory-long.tsv build/memory-long.txt
-	@awk -F'\t' -v limit=$(MEMORY_LONG_LIMIT_KB) -v points=$(MEMORY_LONG_POINTS) \
-	  'FILENAME ~ /time$$/ { split($$0, t, " "); rss = t[1]; secs = t[2]; next } FNR == 1 { for (i = 1; i <= NF; i++) col[$$i] = i; next } \
-	   { rows = rows sprintf(" %sX %s samples AC %s AT %s %s;", $$col["rate"], $$col["n"], $$col["AC"], \
-	                         $$col["AT"], $$col["status"]); bad += $$col["status"] != "ok" } \
-	   END { printf "memory: one vessel of %d points:%s peak RSS %d KB, %.1f s\n", points, rows, rss, secs; \
-	         if (bad || rss > limit) { print "memory: over " limit " KB, or a status not ok"; exit 1 } }' \
-	  build/memory-long.time build/memory-long.tsv
-	@rm -f build/memory-long.*
+memory: bin/tortuosity build/scripts/memory.sh | $(TOOLS_bench)
+	@SIZES='$(MEMORY_SIZES)' LONG_POINTS=$(MEMORY_LONG_POINTS) LIMIT_KB=$(MEMORY_LONG_LIMIT_KB) RATES=$(RATE_LIST) \
+	  bash build/scripts/memory.sh
 
 .PHONY: clean
 clean:
