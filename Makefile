@@ -86,7 +86,7 @@ SCRIPTS := scripts/analysis.R scripts/phantom-tables.R scripts/recon-error.gp sc
            scripts/structure.sh scripts/modules.awk scripts/concordance-tsv.awk scripts/concordance-table.awk \
            scripts/metrics-table.awk scripts/phantom-truth.awk scripts/fidelity.awk scripts/peers.R scripts/peers.awk \
            scripts/peer-table.awk scripts/median.awk scripts/segments.awk scripts/bench.sh scripts/bench-shards.sh \
-           scripts/memory.sh
+           scripts/memory.sh scripts/peer-torsion.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end \
            python/tortuosity.py setup.py pyproject.toml
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
@@ -501,8 +501,10 @@ results/peer-angicart-samples.tsv: build/scripts/peers.awk build/peers/angicart-
 results/peer-phantoms.tsv: build/scripts/peers.awk build/peers/phantoms-peer.tsv build/peers/phantoms-package.tsv
 	awk -v scale=1 -v truth=1 -f $^ >$@.tmp && mv $@.tmp $@
 .PHONY: peers
+results/peer-tau-max.tsv: build/scripts/peer-torsion.awk build/peers/angicart-samples-peer.tsv
+	awk -f $^ >$@.tmp && mv $@.tmp $@
 peers: results/peer-angicart.tsv results/peer-angicart-samples.tsv results/peer-phantoms.tsv \
-       build/scripts/peer-table.awk
+       results/peer-tau-max.tsv build/scripts/peer-table.awk
 	awk -f build/scripts/peer-table.awk results/peer-angicart.tsv results/peer-angicart-samples.tsv \
 	  results/peer-phantoms.tsv >results/peer-table.tex.tmp
 	mv results/peer-table.tex.tmp results/peer-table.tex
