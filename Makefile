@@ -70,7 +70,7 @@ FORMAT_MODULES := $(shell sed -n 's|^<<src/\(format-[a-z0-9-]*\)\.c>>=$$|\1|p' p
 API_MODULES    := tortuosity                      # the library's public interface, tortuosity.h
 # The command line by job (each calls only those before it): text buffers, atomic output and
 # provenance, the table and VTK writers, the stream of windows and shards, the commands.
-CLI_MODULES    := textbuf suggest output writers stream cli
+CLI_MODULES    := textbuf suggest output writers stream options cli
 PLAIN_HEADERS  := geom.h formats.h pspline-types.h tortuosity.h   # headers of types alone, without a .c
 LIB_MODULES := $(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(FORMAT_MODULES) $(API_MODULES)   # the library
 HEADERS := $(addprefix build/src/,$(PLAIN_HEADERS) $(addsuffix .h,$(SHARED_MODULES) $(MODULES) $(READER_MODULES) $(CLI_MODULES)))
