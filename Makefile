@@ -61,7 +61,7 @@ LDLIBS   = -lgsl -lgslcblas -lexpat -ljansson -lz -llz4 -llzma -lcrypto $(HDF5_L
 all: bin/tortuosity setup.py pyproject.toml
 
 SHARED_MODULES := vessel decimal                  # what every part shares: the vessel, numbers as text
-MODULES := phantom rate pipeline result samples torsion-stretches measure-se band eigen gcv scatter hermite pspline pspline-eval pspline-se stencil metrics frenet study   # the method, in the order of paper.nw
+MODULES := twin phantom rate pipeline result samples torsion-stretches measure-se band eigen gcv scatter hermite pspline pspline-eval pspline-se stencil metrics frenet study   # the method, in the order of paper.nw
 # The readers in layers (each calls only those before it): bytes as text, the shared layer, the
 # formats (one file each, src/format-NAME.c, found in paper.nw; their rows are in formats.h, and
 # VTK's two share vtk-data), the table and dispatch.
