@@ -86,7 +86,7 @@ SCRIPTS := scripts/analysis.R scripts/phantom-tables.R scripts/recon-error.gp sc
            scripts/structure.sh scripts/modules.awk scripts/concordance-tsv.awk scripts/concordance-table.awk \
            scripts/metrics-table.awk scripts/phantom-truth.awk scripts/fidelity.awk scripts/peers.R scripts/peers.awk \
            scripts/peer-table.awk scripts/median.awk scripts/segments.awk scripts/bench.sh scripts/bench-shards.sh \
-           scripts/memory.sh scripts/peer-torsion.awk
+           scripts/memory.sh scripts/peer-torsion.awk scripts/quantile.awk
 ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 man/tortuosity.1.end \
            python/tortuosity.py setup.py pyproject.toml
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
@@ -483,8 +483,11 @@ build/peers/angicart-package.tsv: bin/tortuosity build/data/mouse-angicart.sha25
 	@mkdir -p $(@D)
 	@$(call dataset_files,mouse-angicart); ./bin/tortuosity metrics -q $(PEER_FIT) --rates 1000/mm,2000/mm,10000/mm \
 	  -o $@ "$${files[0]}"
-results/peer-angicart.tsv: build/scripts/peers.awk build/peers/angicart-peer.tsv build/peers/angicart-package.tsv
-	awk -v scale=0.001 -f $^ >$@.tmp && mv $@.tmp $@
+# peers.awk and peer-torsion.awk (the first prerequisite) take quantile.awk's function.
+QUANTILES := awk -f build/scripts/quantile.awk
+results/peer-angicart.tsv: build/scripts/peers.awk build/peers/angicart-peer.tsv build/peers/angicart-package.tsv \
+                           build/scripts/quantile.awk
+	$(QUANTILES) -v scale=0.001 -f $< $(filter %.tsv,$^) >$@.tmp && mv $@.tmp $@
 # The peer's frame and metrics alone on the package's own samples (not its fit), per density in points/um.
 PEER_DENSITIES := 1 2 10
 build/peers/angicart-samples-%.txt: bin/tortuosity build/data/mouse-angicart.sha256
@@ -496,13 +499,14 @@ build/peers/angicart-samples-peer-%.tsv: build/scripts/peers.R build/peers/angic
 build/peers/angicart-samples-peer.tsv: $(PEER_DENSITIES:%=build/peers/angicart-samples-peer-%.tsv)
 	awk 'FNR > 1 || NR == 1' $^ >$@.tmp && mv $@.tmp $@
 results/peer-angicart-samples.tsv: build/scripts/peers.awk build/peers/angicart-samples-peer.tsv \
-                                   build/peers/angicart-package.tsv
-	awk -v scale=0.001 -f $^ >$@.tmp && mv $@.tmp $@
-results/peer-phantoms.tsv: build/scripts/peers.awk build/peers/phantoms-peer.tsv build/peers/phantoms-package.tsv
-	awk -v scale=1 -v truth=1 -f $^ >$@.tmp && mv $@.tmp $@
+                                   build/peers/angicart-package.tsv build/scripts/quantile.awk
+	$(QUANTILES) -v scale=0.001 -f $< $(filter %.tsv,$^) >$@.tmp && mv $@.tmp $@
+results/peer-phantoms.tsv: build/scripts/peers.awk build/peers/phantoms-peer.tsv build/peers/phantoms-package.tsv \
+                           build/scripts/quantile.awk
+	$(QUANTILES) -v scale=1 -v truth=1 -f $< $(filter %.tsv,$^) >$@.tmp && mv $@.tmp $@
 .PHONY: peers
-results/peer-tau-max.tsv: build/scripts/peer-torsion.awk build/peers/angicart-samples-peer.tsv
-	awk -f $^ >$@.tmp && mv $@.tmp $@
+results/peer-tau-max.tsv: build/scripts/peer-torsion.awk build/peers/angicart-samples-peer.tsv build/scripts/quantile.awk
+	$(QUANTILES) -f $< $(filter %.tsv,$^) >$@.tmp && mv $@.tmp $@
 peers: results/peer-angicart.tsv results/peer-angicart-samples.tsv results/peer-phantoms.tsv \
        results/peer-tau-max.tsv build/scripts/peer-table.awk
 	awk -f build/scripts/peer-table.awk results/peer-angicart.tsv results/peer-angicart-samples.tsv \
@@ -798,7 +802,7 @@ BENCH_RUN   = ./bin/tortuosity metrics -q --rates $(RATE_LIST) --units mm $(BENC
 # With BENCH_BASELINE=path/to/an/older/tortuosity: that program and this one in turn (A B A B) on two
 # threads, BENCH_RUNS pairs, each pair's ratio and their median, and whether they give the same bytes.
 .PHONY: bench bench-stages
-bench: bin/tortuosity build/scripts/bench.sh build/scripts/median.awk build/scripts/segments.awk
+bench: bin/tortuosity build/scripts/bench.sh build/scripts/quantile.awk build/scripts/median.awk build/scripts/segments.awk
 	@RUNS=$(BENCH_RUNS) SEGMENTS=$(BENCH_SEGMENTS) RATES=$(RATE_LIST) BASELINE='$(BENCH_BASELINE)' \
 	  bash build/scripts/bench.sh $(BENCH_FILES)
 
@@ -807,7 +811,8 @@ bench: bin/tortuosity build/scripts/bench.sh build/scripts/median.awk build/scri
 # and on BraVa's SWC trees at the paper's rates; a shard should cost an eighth.
 BENCH_SHARD_SEGMENTS ?= 200000
 .PHONY: bench-shards
-bench-shards: bin/tortuosity build/scripts/bench-shards.sh build/scripts/median.awk build/scripts/segments.awk
+bench-shards: bin/tortuosity build/scripts/bench-shards.sh build/scripts/quantile.awk build/scripts/median.awk \
+              build/scripts/segments.awk
 	@RUNS=$(BENCH_RUNS) SEGMENTS=$(BENCH_SHARD_SEGMENTS) RATES=$(RATE_LIST) \
 	  bash build/scripts/bench-shards.sh $(BENCH_FILES)
 
