@@ -612,11 +612,15 @@ done
 @! grep -E 'Warning.*undefined|Citation.*undefined' build/pdflatex.log
 @$(check_print)
 endef
-# Fit for print: no line wider than the text by more than 1 pt, no bitmap (Type 3) font.
+# Fit for print: no line wider than the text by more than 1 pt, no bitmap (Type 3) font, and a
+# book a reader can carry: at most REPORT_MAX_PAGES pages.
+REPORT_MAX_PAGES := 330
 define check_print
 awk '/^Overfull \\hbox/ { w = $$3; sub(/\(/, "", w); if (w + 0 > 1) { print "build/paper.log: " $$0; bad = 1 } } \
   END { exit bad }' build/paper.log \
-&& { ! pdffonts build/paper.pdf | grep 'Type 3' || { echo "build/paper.pdf: a Type 3 (bitmap) font"; exit 1; }; }
+&& { ! pdffonts build/paper.pdf | grep 'Type 3' || { echo "build/paper.pdf: a Type 3 (bitmap) font"; exit 1; }; } \
+&& pages=$$(pdfinfo build/paper.pdf | awk '$$1 == "Pages:" { print $$2 }') \
+&& { [ "$$pages" -le $(REPORT_MAX_PAGES) ] || { echo "build/paper.pdf: $$pages pages, more than $(REPORT_MAX_PAGES)"; exit 1; }; }
 endef
 
 REPORT_INPUTS := build/paper.tex build/metrics-table.tex build/interfaces.tex build/concordance.tex build/modules.tex
