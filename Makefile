@@ -786,6 +786,8 @@ sharded: bin/tortuosity | $(TOOLS_parallel)
 	@echo "sharded: $(SHARD_DIR)/all.tsv"
 
 # ---------------------------------------------------------------- lint, benchmark, clean
+# make lint LINT_JUDGE=build/lint-uses.tsv judges the table of uses an earlier lint saved against the
+# stages' packages as given now, without collecting the uses again (the end-to-end checks' case).
 .PHONY: lint
 lint: build/scripts/tools-lint.sh build/scripts/shell-commands.awk build/scripts/structure.sh $(CLI_OBJ) $(LIB_OBJ) \
       $(addprefix build/,$(filter %.sh,$(SCRIPTS))) \
@@ -794,7 +796,8 @@ lint: build/scripts/tools-lint.sh build/scripts/shell-commands.awk build/scripts
 	  && echo "lint: chunk roots match the Makefile" \
 	  || { echo "lint: roots of paper.nw ('<') differ from the Makefile ('>'); a misspelled chunk name?"; exit 1; }
 	@METHOD='$(MODULES)' bash build/scripts/structure.sh paper.nw $(CLI_OBJ) $(LIB_OBJ)
-	@bash build/scripts/tools-lint.sh '$(MAKE)' build/scripts/shell-commands.awk \
+	@bash build/scripts/tools-lint.sh \
+	  $(if $(LINT_JUDGE),--judge '$(LINT_JUDGE)','$(MAKE)' build/scripts/shell-commands.awk build/lint-uses.tsv) \
 	  $(foreach s,$(TOOL_STAGES),'$(s)=$(PACKAGES_$(s))')
 
 # The full BraVa set at the paper's rates, BENCH_RUNS times on one and on two threads: the wall

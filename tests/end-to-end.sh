@@ -16,15 +16,16 @@ near() {    # near A B RELTOL
 }
 
 # ---------------------------------------------------------------- the build
-# Plain 'make' in a fresh clone builds the program (REPO: the repository, given by 'make check').
+# 'make' in a fresh clone builds the program, two jobs at a time as the README's reproduce runs
+# (REPO: the repository, given by 'make check').
 if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
   make_builds_program() {
     git clone -q "$REPO" "$work/clone" || return 1
     cp "$REPO/paper.nw" "$REPO/Makefile" "$work/clone/"        # the working copy, committed or not
-    make -s -C "$work/clone" >"$work/make.log" 2>&1 || { tail -5 "$work/make.log"; return 1; }
+    make -s -j2 -C "$work/clone" >"$work/make.log" 2>&1 || { tail -5 "$work/make.log"; return 1; }
     "$work/clone/bin/tortuosity" --help >/dev/null
   }
-  check "plain 'make' in a fresh clone builds bin/tortuosity" make_builds_program
+  check "'make -j2' in a fresh clone builds bin/tortuosity" make_builds_program
 
   # make install puts the report where the manual page says, once it is built.
   if [ -f "$REPO/build/paper.pdf" ]; then
@@ -37,7 +38,8 @@ if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
   fi
 
   # make lint must catch a program whose package a stage does not list: the report stage
-  # without poppler-utils (pdftoppm makes the figures' PNGs, pdffonts checks the PDF's fonts).
+  # without poppler-utils (pdftoppm makes the figures' PNGs, pdffonts checks the PDF's fonts),
+  # judged on the table of uses that the lint before it saved.
   # The lint installs every stage's packages first, which only root may do.
   if [ "$(id -u)" = 0 ] || ls "$REPO"/build/.tools-{build,report,test,fuzz,bench,parallel} >/dev/null 2>&1; then
     lint_catches_missing_package() {
@@ -45,7 +47,8 @@ if [ -n "${REPO:-}" ] && [ -d "$REPO/.git" ]; then
       report=$(make -s -C "$REPO" -f Makefile -pn 2>/dev/null | sed -n 's/^PACKAGES_report := //p')
       [ -n "$report" ] && [[ " $report " == *" poppler-utils "* ]] || { echo "no poppler-utils in PACKAGES_report"; return 1; }
       make -s -C "$REPO" lint >"$work/lint.log" 2>&1 || { tail -5 "$work/lint.log"; return 1; }
-      ! make -s -C "$REPO" lint PACKAGES_report="${report/poppler-utils/}" >"$work/lint-bad.log" 2>&1 \
+      ! make -s -C "$REPO" lint LINT_JUDGE=build/lint-uses.tsv PACKAGES_report="${report/poppler-utils/}" \
+          >"$work/lint-bad.log" 2>&1 \
         && grep -q 'pdftoppm (program, from package poppler-utils) is used by the report stage' "$work/lint-bad.log" \
         && grep -q 'pdffonts .* is used by the report stage' "$work/lint-bad.log" \
         || { echo "make lint without poppler-utils:"; tail -5 "$work/lint-bad.log"; return 1; }
