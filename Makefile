@@ -61,7 +61,7 @@ LDLIBS   = -lgsl -lgslcblas -lexpat -ljansson -lz -llz4 -llzma -lcrypto $(HDF5_L
 all: bin/tortuosity setup.py pyproject.toml
 
 SHARED_MODULES := vessel decimal                  # what every part shares: the vessel, numbers as text
-MODULES := twin phantom rate pipeline result samples torsion-stretches measure-se band eigen gcv scatter hermite pspline pspline-eval pspline-se stencil metrics frenet study   # the method, in the order of paper.nw
+MODULES := twin phantom rate pipeline result samples torsion-stretches measure-se sufficient band eigen gcv scatter hermite pspline pspline-eval pspline-se stencil metrics frenet study   # the method, in the order of paper.nw
 # The readers in layers (each calls only those before it): bytes as text, the shared layer, the
 # formats (one file each, src/format-NAME.c, found in paper.nw; their rows are in formats.h, and
 # VTK's two share vtk-data), the table and dispatch.
@@ -267,13 +267,13 @@ build/data/%.sha256: data/manifest.tsv FORCE
 	  echo "  (list them with: cd $(DATA_DIR) && sha256sum $$pattern)" >&2; exit 2; fi; \
 	echo "$$found" | cmp -s - $@ || echo "$$found" >$@
 
-# Every measurement of a dataset is one recipe: $(call measure,DATASET,MESSAGE,WORDS[,INDEX]) runs
-# ./bin/tortuosity WORDS with the dataset's reading options, -o $@, on all its files (or on
-# "${files[INDEX]}" alone); MESSAGE, if any, is echoed first.
+# Every measurement of a dataset is one recipe: $(call measure,DATASET,MESSAGE,WORDS[,INDEX[,OUTPUT]])
+# runs ./bin/tortuosity WORDS with the dataset's reading options, -o OUTPUT (default $@), on all its
+# files (or on "${files[INDEX]}" alone); MESSAGE, if any, is echoed first.
 define measure
-@mkdir -p $(@D)
+@mkdir -p $(dir $(or $(5),$@))
 @$(call dataset_files,$(1)); $(if $(2),echo "$(2)"; )\
-./bin/tortuosity $(3) $(call read_options,$(1)) -o $@ "$${files[$(or $(4),@)]}"
+./bin/tortuosity $(3) $(call read_options,$(1)) -o $(or $(5),$@) "$${files[$(or $(4),@)]}"
 endef
 # What a measurement needs; the dataset is the target's file name ($$(*F), at secondary expansion).
 MEASURED = data/manifest.tsv bin/tortuosity build/data/$$(*F).sha256
@@ -281,31 +281,45 @@ MEASURED = data/manifest.tsv bin/tortuosity build/data/$$(*F).sha256
 # its prerequisites'), so that a grid's coordinates are variables, not words of the path.
 cell = $(foreach v,$(2),$(eval $(1): private $(subst =, := ,$(v))))$(1)
 
-# Every dataset at every rate, measured each way: build/results/VARIANT/DATASET.tsv.
+# Every dataset at every rate, measured each way (VARIANTS) and under the significant torsion
+# reading, in one run that fits each vessel once (metrics --variant):
+# build/results/VARIANT/DATASET.tsv, and build/results/noise/significant/data/DATASET.tsv.
 RUNS := $(foreach v,$(VARIANTS),$(foreach d,$(DATASETS),build/results/$(v)/$(d).tsv))
-$(RUNS): build/results/%.tsv: $(MEASURED)
-	$(call measure,$(*F),measure $(*F) ($(*D)): $${#files[@]} file(s),metrics -q --rates $(RATE_LIST) $(OPTIONS_$(*D)))
+# The first variant is the run's own reading (backward Euler, no options); the others are its --variant.
+every_way = $(foreach v,$(wordlist 2,9,$(VARIANTS)),--variant '$(OPTIONS_$(v)) -o build/results/$(v)/$(1).tsv') \
+            --variant '--torsion significant -o build/results/noise/significant/data/$(1).tsv'
+$(foreach v,$(VARIANTS),build/results/$(v)/%.tsv) build/results/noise/significant/data/%.tsv: $(MEASURED)
+	@mkdir -p $(foreach v,$(VARIANTS),build/results/$(v)) build/results/noise/significant/data
+	$(call measure,$*,measure $*: $${#files[@]} file(s)$(comma) every way,metrics -q --rates $(RATE_LIST) \
+	  $(call every_way,$*),,build/results/$(firstword $(VARIANTS))/$*.tsv)
 
 # Torsion or noise: every dataset and its null twins (straight, planar; on the dataset's own
 # precision, the manifest's last column), under the paper's torsion reading and under the
 # significant one: build/results/noise/READING/TWIN/DATASET.tsv, TWIN = data, straight or planar.
-# The data under the paper's reading are the backward-Euler runs above (the same options), not
-# measured twice: R reads those.
+# The data's own readings are the runs above (the paper's: the backward-Euler run, which R reads);
+# each twin is measured under both readings in one run.
 NOISE_READINGS := paper significant
 NOISE_TWINS    := data straight planar
 NOISE_RUNS     := $(filter-out build/results/noise/paper/data/%,\
                     $(foreach r,$(NOISE_READINGS),$(foreach t,$(NOISE_TWINS),$(foreach d,$(DATASETS),\
-                    $(call cell,build/results/noise/$(r)/$(t)/$(d).tsv,NOISE_READING=$(r) NOISE_TWIN=$(t))))))
-noise_twin      = $(if $(filter-out data,$(1)),--null $(1) --precision '$(call manifest_value,$(2),10)')
-$(NOISE_RUNS): build/results/noise/%.tsv: $(MEASURED)
-	$(call measure,$(*F),noise: $(*F)$(comma) $(NOISE_READING): $(NOISE_TWIN),metrics -q --rates $(RATE_LIST) \
-	  --torsion $(NOISE_READING) $(call noise_twin,$(NOISE_TWIN),$(*F)))
+                    build/results/noise/$(r)/$(t)/$(d).tsv))))
+define null_twin_runs   # the rule of TWIN $(1)'s runs
+build/results/noise/paper/$(1)/%.tsv build/results/noise/significant/$(1)/%.tsv: $$(MEASURED)
+	@mkdir -p build/results/noise/significant/$(1)
+	$$(call measure,$$*,noise: $$*$$(comma) $(1) twin,metrics -q --rates $$(RATE_LIST) --null $(1) \
+	  --precision '$$(call manifest_value,$$*,10)' \
+	  --variant '--torsion significant -o build/results/noise/significant/$(1)/$$*.tsv',,build/results/noise/paper/$(1)/$$*.tsv)
+endef
+$(foreach t,$(filter-out data,$(NOISE_TWINS)),$(eval $(call null_twin_runs,$(t))))
 
-# The smallest sufficient rate per vessel, for the datasets with radii:
-# build/results/sufficient/INTEGRATOR/DATASET.tsv.
+# The smallest sufficient rate per vessel, for the datasets with radii, with each integrator in one
+# run: build/results/sufficient/INTEGRATOR/DATASET.tsv.
 SUFFICIENT := $(foreach i,$(INTEGRATORS),$(foreach d,$(RADII_DATASETS),build/results/sufficient/$(i)/$(d).tsv))
-$(SUFFICIENT): build/results/sufficient/%.tsv: $(MEASURED)
-	$(call measure,$(*F),sufficient rate: $(*F) ($(*D)),sufficient -q --integrator $(*D))
+each_integrator = $(foreach i,$(wordlist 2,9,$(INTEGRATORS)),--variant '--integrator $(i) -o build/results/sufficient/$(i)/$(1).tsv')
+$(foreach i,$(INTEGRATORS),build/results/sufficient/$(i)/%.tsv): $(MEASURED)
+	@mkdir -p $(foreach i,$(INTEGRATORS),build/results/sufficient/$(i))
+	$(call measure,$*,sufficient rate: $*,sufficient -q --integrator $(firstword $(INTEGRATORS)) $(call each_integrator,$*),,\
+	  build/results/sufficient/$(firstword $(INTEGRATORS))/$*.tsv)
 
 # Views of the data (the paper's Figure 1): every vessel of the first file of each dataset, raw,
 # and a Salkowski phantom: build/results/views/NAME.tsv.

@@ -404,6 +404,67 @@ sufficient_any_order() {
   done
 }
 check "sufficient --ladder: the smallest sufficient rate, whatever the ladder's order" sufficient_any_order
+
+# ---------------------------------------------------------------- several readings of one fit
+# metrics --variant: each table is the bytes of a run of its own with those options, on one thread
+# and two: noisy helices and Salkowski curves, vessels of 1 to 6 points (statuses before the
+# reconstruction), a helix of 12,000 points (measured in pieces at 100X) and readings that share
+# the samples (the integrators) or not (the filter, the significant reading).
+"$T" phantom --shape helix --points 12000 --sigma 0.01 --seed 3 >"$work/long-helix.txt"
+variant_words=("--integrator rotation" "--integrator bishop" "--integrator bishop --planar" "--filter"
+               "--filter --integrator bishop" "--torsion significant" "--torsion significant --integrator rotation")
+variants_match_own_runs() {   # variants_match_own_runs JOBS OPTIONS... FILES
+  local jobs=$1 k args=(); shift
+  for k in "${!variant_words[@]}"; do args+=(--variant "${variant_words[$k]} -o $work/variant-$k.tsv"); done
+  "$T" metrics -q --jobs "$jobs" "${args[@]}" -o "$work/variant-main.tsv" "$@" || return 1
+  "$T" metrics -q --jobs "$jobs" "$@" | cmp - "$work/variant-main.tsv" || return 1
+  for k in "${!variant_words[@]}"; do
+    "$T" metrics -q --jobs "$jobs" ${variant_words[$k]} "$@" | cmp - "$work/variant-$k.tsv" \
+      || { echo "--variant '${variant_words[$k]}' differs from its own run"; return 1; }
+    [ -s "$work/variant-$k.tsv.provenance.tsv" ] || { echo "no provenance for variant $k"; return 1; }
+  done
+}
+check "metrics --variant: every table the bytes of its own run (phantoms, degenerate vessels, a vessel in pieces), one thread" \
+  variants_match_own_runs 1 "${shard_files[@]}" "$work/degenerate.txt" "$work/long-helix.txt"
+check "metrics --variant: likewise on two threads, with a null twin and a precision" \
+  variants_match_own_runs 2 --null planar --precision 0.05 "${shard_files[@]}" "$work/degenerate.txt"
+if compgen -G "$DATA_DIR/fdenz-coronary/*centerlines.npy" >/dev/null; then
+  check "metrics --variant: every table the bytes of its own run on the coronary data" \
+    variants_match_own_runs 2 --units mm --split-gap 1 "$DATA_DIR"/fdenz-coronary/*centerlines.npy
+fi
+sufficient_variants_match() {   # the sufficient rate of every integrator (and filtered) in one run
+  local words=("--integrator rotation" "--integrator bishop" "--filter" "--filter --integrator rotation") k args=()
+  for k in "${!words[@]}"; do args+=(--variant "${words[$k]} -o $work/suff-variant-$k.tsv"); done
+  "$T" sufficient -q "${args[@]}" -o "$work/suff-variant.tsv" "$work/radii12.txt" || return 1
+  cmp "$work/suff-variant.tsv" "$work/suff-all.tsv" || return 1
+  for k in "${!words[@]}"; do
+    "$T" sufficient -q ${words[$k]} "$work/radii12.txt" | cmp - "$work/suff-variant-$k.tsv" \
+      || { echo "sufficient --variant '${words[$k]}' differs from its own run"; return 1; }
+  done
+  awk -F'\t' 'NR > 1 && $6 != "none" { n++ } END { exit n < 6 }' "$work/suff-variant-0.tsv"
+}
+check "sufficient --variant: every integrator's table the bytes of its own run" sufficient_variants_match
+variant_refusals() {   # each refused with exit 2 and its message, nothing written, no temporary file left
+  local args msg
+  "$T" phantom >"$work/variant-helix.txt" || return 1
+  mkdir -p "$work/refused" && cd "$work/refused" || return 1
+  while IFS='|' read -r args msg; do
+    eval "'$T' metrics -q $args '$work/variant-helix.txt'" >/dev/null 2>"$work/variant.err"
+    [ $? -eq 2 ] || { echo "$args: not exit 2"; return 1; }
+    grep -q -- "$msg" "$work/variant.err" || { echo "$args:"; cat "$work/variant.err"; return 1; }
+    [ -z "$(ls -A)" ] || { echo "$args left:"; ls -A; return 1; }
+  done <<'EOF'
+--variant '--integrator rotation'|needs -o FILE
+--variant '--integrator foo -o b.tsv'|unknown integrator 'foo'
+--variant '--segments 40 -o b.tsv'|not '--segments'
+--variant '--integrator rotation -o ./a.tsv' -o a.tsv|two tables would go to one file
+--variant '--filter -o b.tsv' --variant '--integrator bishop -o ../refused/b.tsv' -o a.tsv|two tables would go to one file
+--variant '--filter -o b.tsv' --uncertainty -o a.tsv|not with --uncertainty
+--variant '--filter -o b.vtp' -o a.tsv|not .vtp files
+EOF
+}
+check "metrics --variant: a reading without a file of its own, an unknown word or value, two tables to one file, --uncertainty and .vtp refused (exit 2, nothing written)" \
+  variant_refusals
 # Options a command has no use for are refused with exit 2 and a message naming the option, never
 # ignored: --null and --uncertainty outside metrics; metrics takes them. --precision, the data's,
 # every command that fits takes.
