@@ -444,12 +444,14 @@ sufficient_variants_match() {   # the sufficient rate of every integrator (and f
   awk -F'\t' 'NR > 1 && $6 != "none" { n++ } END { exit n < 6 }' "$work/suff-variant-0.tsv"
 }
 check "sufficient --variant: every integrator's table the bytes of its own run" sufficient_variants_match
-variant_refusals() {   # each refused with exit 2 and its message, nothing written, no temporary file left
-  local args msg
-  "$T" phantom >"$work/variant-helix.txt" || return 1
+variant_refusals() (   # each refused with exit 2 and its message, nothing written, no temporary file left
+  # (a subshell: its cd stays here)
+  local args msg program
+  program=$(cd "$(dirname "$T")" && pwd)/$(basename "$T")
+  "$program" phantom >"$work/variant-helix.txt" || return 1
   mkdir -p "$work/refused" && cd "$work/refused" || return 1
   while IFS='|' read -r args msg; do
-    eval "'$T' metrics -q $args '$work/variant-helix.txt'" >/dev/null 2>"$work/variant.err"
+    eval "'$program' metrics -q $args '$work/variant-helix.txt'" >/dev/null 2>"$work/variant.err"
     [ $? -eq 2 ] || { echo "$args: not exit 2"; return 1; }
     grep -q -- "$msg" "$work/variant.err" || { echo "$args:"; cat "$work/variant.err"; return 1; }
     [ -z "$(ls -A)" ] || { echo "$args left:"; ls -A; return 1; }
@@ -462,7 +464,7 @@ variant_refusals() {   # each refused with exit 2 and its message, nothing writt
 --variant '--filter -o b.tsv' --uncertainty -o a.tsv|not with --uncertainty
 --variant '--filter -o b.vtp' -o a.tsv|not .vtp files
 EOF
-}
+)
 check "metrics --variant: a reading without a file of its own, an unknown word or value, two tables to one file, --uncertainty and .vtp refused (exit 2, nothing written)" \
   variant_refusals
 # Options a command has no use for are refused with exit 2 and a message naming the option, never
