@@ -195,8 +195,9 @@ build/tortuosity.1: paper.nw bin/tortuosity build/scripts/man-commands.awk | $(T
 INSTALLED := bin/tortuosity lib/libtortuosity.a lib/libtortuosity.so.$(VERSION) lib/libtortuosity.so.$(SOVERSION) \
              lib/libtortuosity.so include/tortuosity.h lib/pkgconfig/tortuosity.pc share/man/man1/tortuosity.1 \
              $(PYTHON_DIR)/tortuosity.py
-install: bin/tortuosity build/lib/libtortuosity.a $(SHARED_LIB) build/include/tortuosity.h build/tortuosity.pc \
-    build/tortuosity.1 build/python/tortuosity.py
+INSTALL_INPUTS := bin/tortuosity build/lib/libtortuosity.a $(SHARED_LIB) build/include/tortuosity.h build/tortuosity.pc \
+                  build/tortuosity.1 build/python/tortuosity.py
+install: $(INSTALL_INPUTS)
 	install -d '$(DESTDIR)$(PREFIX)'/{bin,lib/pkgconfig,include,share/man/man1,$(PYTHON_DIR)}
 	install -m 755 bin/tortuosity '$(DESTDIR)$(PREFIX)/bin/'
 	install -m 644 build/lib/libtortuosity.a $(SHARED_LIB) '$(DESTDIR)$(PREFIX)/lib/'
@@ -670,24 +671,39 @@ $(TEST_LOCALE): | $(TOOLS_test)
 	@mkdir -p $(dir $@)
 	localedef -i de_DE -f UTF-8 $@
 
-.PHONY: check
-check: build/unit-tests bin/tortuosity build/fidelity-sweep build/scripts/fidelity.awk build/scripts/slurm-shards.sh \
-       build/scripts/structure.sh $(TEST_LOCALE) | $(TOOLS_test)
+# The suites run side by side, JOBS at a time, the longest first; each prints its whole output
+# when it ends (--output-sync), and the totals of their logs decide. Every file the suites use is
+# built before they start, so the makes they run in this tree (install, lint) only read it.
+CHECK_SUITES := end-to-end unit-tests reliability python-api pip-install
+check_suites  = $(MAKE) -s $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(JOBS)) --output-sync=target $(1)
+check_totals  = awk '$(COUNT_LINE) { p += $$(NF - 3); f += $$(NF - 1) } \
+                     END { printf "$(1): %d passed, %d failed\n", p, f; exit f > 0 }' $(2)
+
+CHECK_INPUTS := build/unit-tests bin/tortuosity build/fidelity-sweep build/scripts/fidelity.awk \
+                build/scripts/slurm-shards.sh build/scripts/structure.sh $(INSTALL_INPUTS) $(TEST_LOCALE)
+
+.PHONY: check $(addprefix check-,$(CHECK_SUITES))
+check $(addprefix check-,$(CHECK_SUITES)): $(CHECK_INPUTS) | $(TOOLS_test)
+check: | $(TOOLS_test)
+	@$(call check_suites,$(addprefix check-,$(CHECK_SUITES)))
+	@$(call check_totals,check,$(addprefix build/,$(addsuffix .log,$(CHECK_SUITES))))
+check-unit-tests: | $(TOOLS_test)
 	@echo "== unit tests (paper.nw)"
 	@./build/unit-tests | tee build/unit-tests.log
+check-end-to-end: | $(TOOLS_test)
 	@echo "== end-to-end checks (tests/)"
 	@DATA_DIR='$(DATA_DIR)' REPO='$(CURDIR)' bash tests/end-to-end.sh bin/tortuosity | tee build/end-to-end.log
+check-reliability: | $(TOOLS_test)
 	@echo "== reliability checks (tests/)"
 	@bash tests/reliability.sh bin/tortuosity | tee build/reliability.log
+check-python-api: | $(TOOLS_test)
 	@echo "== the Python module, installed into build/check-prefix (tests/)"
 	@rm -rf build/check-prefix && $(MAKE) -s install PREFIX='$(CURDIR)/build/check-prefix' >build/check-install.log
 	@PYTHONPATH=build/check-prefix/$(PYTHON_DIR) /usr/bin/python3 tests/python-api.py bin/tortuosity \
 	  | tee build/python-api.log
+check-pip-install: | $(TOOLS_test)
 	@echo "== pip install of the package into a fresh virtual environment (tests/)"
 	@bash tests/pip-install.sh bin/tortuosity '$(CURDIR)' | tee build/pip-install.log
-	@awk '$(COUNT_LINE) { p += $$(NF - 3); f += $$(NF - 1) } \
-	      END { printf "check: %d passed, %d failed\n", p, f; exit f > 0 }' \
-	      build/unit-tests.log build/end-to-end.log build/reliability.log build/python-api.log build/pip-install.log
 
 # The same suite with AddressSanitizer and UndefinedBehaviorSanitizer; any report is fatal.
 # The sanitizer build is also the baseline x86-64 build (no AVX2 clones of the hot loops): its
@@ -705,19 +721,23 @@ build/sanitize/unit-tests: build/sanitize/unit-tests.o $(SAN_OBJ) build/sanitize
 build/sanitize/tortuosity: $(addprefix build/sanitize/,$(addsuffix .o,$(CLI_MODULES))) $(SAN_OBJ) | $(TOOLS_build)
 	$(SAN_CC) -o $@ $^ $(LDLIBS)
 
-.PHONY: check-sanitize
-check-sanitize: build/sanitize/unit-tests build/sanitize/tortuosity bin/tortuosity $(TEST_LOCALE) | $(TOOLS_test)
+SANITIZE_SUITES := end-to-end unit-tests reliability
+.PHONY: check-sanitize $(addprefix check-sanitize-,$(SANITIZE_SUITES))
+check-sanitize $(addprefix check-sanitize-,$(SANITIZE_SUITES)): build/sanitize/unit-tests build/sanitize/tortuosity \
+    bin/tortuosity $(TEST_LOCALE) | $(TOOLS_test)
+check-sanitize: | $(TOOLS_test)
+	@$(call check_suites,$(addprefix check-sanitize-,$(SANITIZE_SUITES)))
+	@$(call check_totals,check-sanitize,$(addprefix build/sanitize/,$(addsuffix .log,$(SANITIZE_SUITES))))
+check-sanitize-unit-tests: | $(TOOLS_test)
 	@echo "== unit tests, sanitized"
 	@ASAN_OPTIONS=detect_leaks=1 ./build/sanitize/unit-tests | tee build/sanitize/unit-tests.log
+check-sanitize-end-to-end: | $(TOOLS_test)
 	@echo "== end-to-end checks, sanitized"
 	@ASAN_OPTIONS=detect_leaks=1 DATA_DIR='$(DATA_DIR)' REFERENCE=bin/tortuosity \
-	  bash tests/end-to-end.sh build/sanitize/tortuosity \
-	  | tee build/sanitize/end-to-end.log
+	  bash tests/end-to-end.sh build/sanitize/tortuosity | tee build/sanitize/end-to-end.log
+check-sanitize-reliability: | $(TOOLS_test)
 	@echo "== reliability checks, sanitized"
 	@ASAN_OPTIONS=detect_leaks=1 bash tests/reliability.sh build/sanitize/tortuosity | tee build/sanitize/reliability.log
-	@awk '$(COUNT_LINE) { p += $$(NF - 3); f += $$(NF - 1) } \
-	      END { printf "check-sanitize: %d passed, %d failed\n", p, f; exit f > 0 }' \
-	      build/sanitize/unit-tests.log build/sanitize/end-to-end.log build/sanitize/reliability.log
 
 # ---------------------------------------------------------------- fuzzing
 # One libFuzzer harness per row of the format table, seeded from the real files; crashes land in
@@ -803,6 +823,10 @@ sharded: bin/tortuosity | $(TOOLS_parallel)
 # make lint LINT_JUDGE=build/lint-uses.tsv judges the table of uses an earlier lint saved against the
 # stages' packages as given now, without collecting the uses again (the end-to-end checks' case).
 .PHONY: lint
+# The targets whose rules the lint reads (make's dry run of them): every target a user runs, and
+# the suites that check and check-sanitize run in a make of their own.
+LINT_TARGETS := all check $(addprefix check-,$(CHECK_SUITES)) check-sanitize $(addprefix check-sanitize-,$(SANITIZE_SUITES)) \
+                reproduce paper install uninstall bench bench-shards bench-stages memory fuzz sharded clean
 lint: build/scripts/tools-lint.sh build/scripts/shell-commands.awk build/scripts/structure.sh $(CLI_OBJ) $(LIB_OBJ) \
       $(addprefix build/,$(filter %.sh,$(SCRIPTS))) \
     | $(foreach s,$(TOOL_STAGES),$(TOOLS_$(s)))
@@ -811,7 +835,8 @@ lint: build/scripts/tools-lint.sh build/scripts/shell-commands.awk build/scripts
 	  || { echo "lint: roots of paper.nw ('<') differ from the Makefile ('>'); a misspelled chunk name?"; exit 1; }
 	@METHOD='$(MODULES)' bash build/scripts/structure.sh paper.nw $(CLI_OBJ) $(LIB_OBJ)
 	@bash build/scripts/tools-lint.sh \
-	  $(if $(LINT_JUDGE),--judge '$(LINT_JUDGE)','$(MAKE)' build/scripts/shell-commands.awk build/lint-uses.tsv) \
+	  $(if $(LINT_JUDGE),--judge '$(LINT_JUDGE)','$(MAKE)' build/scripts/shell-commands.awk build/lint-uses.tsv \
+	    '$(LINT_TARGETS)') \
 	  $(foreach s,$(TOOL_STAGES),'$(s)=$(PACKAGES_$(s))')
 
 # The full BraVa set at the paper's rates, BENCH_RUNS times on one and on two threads: the wall

@@ -192,8 +192,8 @@ killed_run_leaves_nothing() {   # killed_run_leaves_nothing SIGNAL
   local sig=$1 dir=$work/k-$1 pid status
   mkdir "$dir"
   set -m    # a job of its own: a non-interactive shell starts background jobs with SIGINT ignored,
-  # and env restores the default where this script itself was started with it ignored
-  env --default-signal=INT "$T" "${slow[@]}" -o "$dir/out.tsv" "$work/slow.txt" 2>"$work/stderr" &
+  # and env restores every signal's default where this script was started with some ignored (nohup)
+  env --default-signal "$T" "${slow[@]}" -o "$dir/out.tsv" "$work/slow.txt" 2>"$work/stderr" &
   pid=$!
   set +m
   sleep 0.5
