@@ -91,13 +91,26 @@ ROOTS   := $(C_ROOTS) $(SCRIPTS) concordance tortuosity.pc.in man/tortuosity.1 m
            python/tortuosity.py setup.py pyproject.toml
 .SECONDARY: $(addprefix build/,$(ROOTS))   # tangled files are kept, so cpif can compare
 
-build/src/%: paper.nw | $(TOOLS_build)
-	@mkdir -p $(dir $@)
-	notangle -L -R'src/$*' paper.nw | cpif $@
-
-build/scripts/%: paper.nw | $(TOOLS_build)
-	@mkdir -p $(dir $@)
-	notangle -R'scripts/$*' paper.nw | cpif $@
+# Tangling: one pass writes every file the build reads from paper.nw (the C sources, with #line
+# marks that point into it; the scripts; the installed header, without them; the Python module;
+# the two files pip reads at the top). cpif replaces a file only where its text changed, so only
+# what is built from a changed file is built again. The pass runs when paper.nw changes or a file
+# is missing, and build/tangled records it: the files cpif leaves alone keep their older times,
+# and a rule per file would tangle each of them again on every run of make.
+TANGLED := $(addprefix build/,$(C_ROOTS) $(SCRIPTS)) build/include/tortuosity.h build/python/tortuosity.py \
+           setup.py pyproject.toml
+tangle = notangle $(1) -R"$(2)" paper.nw | cpif "$(3)"
+build/tangled: paper.nw $(if $(filter-out $(wildcard $(TANGLED)),$(TANGLED)),FORCE) | $(TOOLS_build)
+	@echo "notangle paper.nw -> $(words $(TANGLED)) files (those whose text changed)"
+	@mkdir -p $(sort $(dir $(TANGLED)))
+	@set -e -o pipefail; \
+	for root in $(C_ROOTS); do $(call tangle,-L,$$root,build/$$root); done; \
+	for root in $(SCRIPTS); do $(call tangle,,$$root,build/$$root); done; \
+	$(call tangle,,src/tortuosity.h,build/include/tortuosity.h); \
+	$(call tangle,,python/tortuosity.py,build/python/tortuosity.py); \
+	for root in setup.py pyproject.toml; do $(call tangle,,$$root,$$root); done
+	@touch $@
+$(TANGLED): build/tangled ;
 
 # Objects also depend on the Makefile, so a change of flags rebuilds them.
 build/obj/%.o: build/src/%.c $(HEADERS) Makefile | $(TOOLS_build)
@@ -151,15 +164,6 @@ $(SHARED_LIB): $(PIC_OBJ) | $(TOOLS_build)
 	  -o $@ $^ $(LDLIBS)
 	ln -sf $(@F) build/lib/libtortuosity.so.$(SOVERSION) && ln -sf $(@F) build/lib/libtortuosity.so
 
-# The installed header has no #line marks (those point into paper.nw, for the compiler's messages).
-build/include/tortuosity.h: paper.nw | $(TOOLS_build)
-	@mkdir -p $(@D)
-	notangle -R'src/tortuosity.h' paper.nw | cpif $@
-# The Python module, pure Python over the shared library (ctypes; numpy from Debian).
-build/python/tortuosity.py: paper.nw | $(TOOLS_build)
-	@mkdir -p $(@D)
-	notangle -R'python/tortuosity.py' paper.nw | cpif $@
-
 # pip install . (setup.py): the module and the shared library side by side in a package folder.
 # setup.py and pyproject.toml are tangled to the top of the tree, where pip looks, and committed.
 .PHONY: pip-package
@@ -170,8 +174,6 @@ build/pip/tortuosity/__init__.py: build/python/tortuosity.py
 build/pip/tortuosity/libtortuosity.so.1: $(SHARED_LIB)
 	@mkdir -p $(@D)
 	cp $< $@
-setup.py pyproject.toml: paper.nw | $(TOOLS_build)
-	notangle -R'$@' paper.nw | cpif $@
 
 PREFIX  ?= /usr/local
 DESTDIR ?=
