@@ -675,7 +675,8 @@ $(TEST_LOCALE): | $(TOOLS_test)
 
 # The suites run side by side, JOBS at a time, the longest first; each prints its whole output
 # when it ends (--output-sync), and the totals of their logs decide. Every file the suites use is
-# built before they start, so the makes they run in this tree (install, lint) only read it.
+# built before they start, so the makes they run in this tree (install, lint) only read it. Each
+# rule names its tools stamp on its own line, where make lint reads a recipe's stage.
 CHECK_SUITES := end-to-end unit-tests reliability python-api pip-install
 check_suites  = $(MAKE) -s $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(JOBS)) --output-sync=target $(1)
 check_totals  = awk '$(COUNT_LINE) { p += $$(NF - 3); f += $$(NF - 1) } \
@@ -685,7 +686,7 @@ CHECK_INPUTS := build/unit-tests bin/tortuosity build/fidelity-sweep build/scrip
                 build/scripts/slurm-shards.sh build/scripts/structure.sh $(INSTALL_INPUTS) $(TEST_LOCALE)
 
 .PHONY: check $(addprefix check-,$(CHECK_SUITES))
-check $(addprefix check-,$(CHECK_SUITES)): $(CHECK_INPUTS) | $(TOOLS_test)
+check $(addprefix check-,$(CHECK_SUITES)): $(CHECK_INPUTS)
 check: | $(TOOLS_test)
 	@$(call check_suites,$(addprefix check-,$(CHECK_SUITES)))
 	@$(call check_totals,check,$(addprefix build/,$(addsuffix .log,$(CHECK_SUITES))))
@@ -726,7 +727,7 @@ build/sanitize/tortuosity: $(addprefix build/sanitize/,$(addsuffix .o,$(CLI_MODU
 SANITIZE_SUITES := end-to-end unit-tests reliability
 .PHONY: check-sanitize $(addprefix check-sanitize-,$(SANITIZE_SUITES))
 check-sanitize $(addprefix check-sanitize-,$(SANITIZE_SUITES)): build/sanitize/unit-tests build/sanitize/tortuosity \
-    bin/tortuosity $(TEST_LOCALE) | $(TOOLS_test)
+    bin/tortuosity $(TEST_LOCALE)
 check-sanitize: | $(TOOLS_test)
 	@$(call check_suites,$(addprefix check-sanitize-,$(SANITIZE_SUITES)))
 	@$(call check_totals,check-sanitize,$(addprefix build/sanitize/,$(addsuffix .log,$(SANITIZE_SUITES))))
