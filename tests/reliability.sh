@@ -118,6 +118,17 @@ o_link_to_dev_null() {
 }
 check "-o LINK -> /dev/null: exit 0, /dev/null still a device, LINK still a symlink" o_link_to_dev_null
 
+variant_onto_provenance() {   # a variant's table named as the main table's provenance file, or the reverse
+  mkdir -p "$work/vp"
+  refused 2 "$T" metrics -q --rates 1 -o "$work/vp/t" --variant "--planar -o $work/vp/t.provenance.tsv" \
+    "$work/h3.txt" || return 1
+  refused 2 "$T" metrics -q --rates 1 -o "$work/vp/t.provenance.tsv" --variant "--planar -o $work/vp/t" \
+    "$work/h3.txt" || return 1
+  [ -z "$(ls "$work/vp")" ] || { echo "files were written:"; ls "$work/vp"; return 1; }
+}
+check "--variant -o onto the main table's provenance file (or the reverse): exit 2, nothing written" \
+  variant_onto_provenance
+
 # ---------------------------------------------------------------- 2. write errors
 write_error() {     # write_error COMMAND...: standard output on /dev/full; exit 1 with a message
   "$@" >/dev/full 2>"$work/stderr"; rc=$?
@@ -330,6 +341,27 @@ group_resumes() {
   grep -qF "$work/resume.csv:10:" "$work/stderr" || { echo "message does not name line 10:"; head -3 "$work/stderr"; return 1; }
 }
 check "CSV group A A A A B B B B A A: exit 2, message names line 10 where A resumes" group_resumes
+
+{ echo line_id,point_index,x,y,z; awk 'NF { print "0," n++ "," $1 "," $2 "," $3 }' "$work/pts8.txt" | tac; } \
+  >"$work/reversed-index.csv"
+index_out_of_order() {
+  refused 2 "$T" metrics -q --rates 1 "$work/reversed-index.csv" || return 1
+  grep -qF "$work/reversed-index.csv:3: point 6 after point 7" "$work/stderr" \
+    || { echo "message does not name line 3:"; head -3 "$work/stderr"; return 1; }
+}
+check "CSV rows in reverse point_index order: exit 2 at line 3, not joined in the rows' order" index_out_of_order
+
+tube() {     # tube NAME: a MetaIO tube of pts8.txt's points, in ITK 4's columns
+  printf 'ObjectType = Tube\nNDims = 3\nName = %s\nPointDim = x y z r\nNPoints = 8\nPoints = \n' "$1"
+  awk 'NF { print $1, $2, $3, 0.5 }' "$work/pts8.txt"
+}
+{ printf 'ObjectType = Scene\nNDims = 3\nNObjects = 2\n'; tube a; tube b | head -5; } >"$work/cut-tube.tre"
+tube_cut_short() {
+  refused 2 "$T" metrics -q --rates 1 "$work/cut-tube.tre" || return 1
+  grep -qF "$work/cut-tube.tre:18: a tube (NPoints 8) without its Points block" "$work/stderr" \
+    || { echo "message does not name line 18:"; head -3 "$work/stderr"; return 1; }
+}
+check ".tre whose last tube ends in its header: exit 2 naming that tube, not its first tube alone" tube_cut_short
 
 { echo vessel,x,y,z; csv_rows a 1 4; echo; csv_rows a 5 8; } >"$work/group-blank.csv"
 { echo vessel,x,y,z; csv_rows a 1 4; echo '# a comment'; csv_rows a 5 8; } >"$work/group-comment.csv"
