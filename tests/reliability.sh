@@ -856,6 +856,25 @@ sed 's/1 1 1</0xAp0 1 1</' "$work/u64.vtp" | sed 's/18446744073709551615/1/; s/U
 check "0x10 in a text coordinate: exit 2" refused 2 "$T" metrics -q "$work/hex.txt"
 check "0x10 in a CSV coordinate: exit 2" refused 2 "$T" metrics -q "$work/hex.csv"
 check "0xAp0 in an ASCII .vtp coordinate: exit 2" refused 2 "$T" metrics -q "$work/hex.vtp"
+
+# Four points (0,0,0) (1,0,0) (2,1,0) (3,1,0) as raw appended Float64: a 4-byte count (96), then the data
+z8='\x00\x00\x00\x00\x00\x00\x00\x00' one='\x00\x00\x00\x00\x00\x00\xf0\x3f'
+two='\x00\x00\x00\x00\x00\x00\x00\x40' three='\x00\x00\x00\x00\x00\x00\x08\x40'
+{ printf '<?xml version="1.0"?>\n<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt32">\n'
+  printf '<PolyData><Piece NumberOfPoints="4" NumberOfLines="1"><Points>\n'
+  printf '<DataArray type="Float64" NumberOfComponents="3" format="appended" offset="0"/></Points>\n'
+  printf '<Lines><DataArray type="Int64" Name="connectivity" format="ascii">0 1 2 3</DataArray>\n'
+  printf '<DataArray type="Int64" Name="offsets" format="ascii">4</DataArray></Lines></Piece></PolyData>\n'
+  printf '<AppendedData encoding="raw">\n_\x60\x00\x00\x00'
+  printf "$z8$z8$z8$one$z8$z8$two$one$z8$three$one$z8"
+  printf '\n</AppendedData>\n</VTKFile>\n'; } >"$work/appended.vtp"
+head -c -12 "$work/appended.vtp" >"$work/appended-cut.vtp"
+appended_cut_short() {
+  vessels_are "0:4" "$work/appended.vtp" || return 1
+  messages_say "cut short" "$T" metrics -q --rates 1 "$work/appended-cut.vtp"
+}
+check ".vtp of raw appended data without its closing tags (cut short): exit 2, 'cut short'; whole, read" \
+  appended_cut_short
 not_applied() {     # not_applied WORDS OPTION... -- FILE: a warning names the option that does not apply
   local words=$1; shift
   run "$T" metrics --rates 1 "$@"
