@@ -406,6 +406,15 @@ segments_bound() {
 }
 check "--segments 5000: exit 2, message gives the bound 1000" segments_bound
 
+printf '0 0 0\n2e8 1e7 0\n4e8 0 3e7\n6e8 -1e7 0\n8e8 0 0\n' >"$work/far5.txt"
+density_bound() {   # five points 2e8 mm apart at 3/mm would be 2.4e9 samples: more than 1e5 a point
+  run timeout 10 "$T" metrics -q --rates 3/mm,10 "$work/far5.txt"
+  expect_rc 0 || return 1
+  local got; got=$(awk -F'\t' 'NR > 1 { printf "%s%s:%s", sep, $3, $NF; sep = " " }' "$work/stdout")
+  [ "$got" = "3/mm:too-many-samples 10:ok" ] || { echo "rate:status '$got'"; return 1; }
+}
+check "3/mm on five points 2e8 mm apart: too-many-samples at once (more than 1e5 a point), 10X still ok" density_bound
+
 "$T" phantom --shape helix --points 1500 >"$work/p1500.txt"
 segments_in_little_memory() {
   (ulimit -v 400000; exec timeout 120 "$T" metrics -q --jobs 1 --segments 1000 "$work/p1500.txt") \
