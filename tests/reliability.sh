@@ -932,6 +932,12 @@ keep_going_shards() {   # the shards of a mixed batch join to the whole good res
   same_bytes "$work/good1.tsv" "$work/kgs.tsv"
 }
 check "--keep-going --shard K/3 on a mixed batch: the three shards join to the good files' result" keep_going_shards
+all_bad_kept_going() {   # --keep-going when every file is bad: exit 2, no table written
+  run "$T" metrics -q --rates 1 --keep-going -o "$work/allbad.tsv" "$work/bad.txt" "$work/bad.txt"
+  expect_rc 2 && has_message || return 1
+  [ ! -e "$work/allbad.tsv" ] || { echo "a table was written:"; head -2 "$work/allbad.tsv"; return 1; }
+}
+check "--keep-going when every input file is bad: exit 2, no table" all_bad_kept_going
 check "without --keep-going one bad file still stops the batch: exit 2, no rows" \
   refused 2 "$T" metrics -q --rates 1 "$work/h3.txt" "$work/bad.txt"
 
