@@ -865,6 +865,22 @@ sed 's/1 1 1</0xAp0 1 1</' "$work/u64.vtp" | sed 's/18446744073709551615/1/; s/U
 check "0x10 in a text coordinate: exit 2" refused 2 "$T" metrics -q "$work/hex.txt"
 check "0x10 in a CSV coordinate: exit 2" refused 2 "$T" metrics -q "$work/hex.csv"
 check "0xAp0 in an ASCII .vtp coordinate: exit 2" refused 2 "$T" metrics -q "$work/hex.vtp"
+{ printf '# vtk DataFile Version 3.0\nnan\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n0 0 0\n1 0 0\n'
+  printf 'nan 1 0\n3 1 0\nLINES 1 5\n4 0 1 2 3\n'; } >"$work/nan-point.vtk"
+{ printf '<?xml version="1.0"?>\n<VTKFile type="PolyData" version="1.0"><PolyData>\n'
+  printf '<Piece NumberOfPoints="4" NumberOfLines="1"><Points>\n'
+  printf '<DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 nan 1 0 3 1 0</DataArray>\n'
+  printf '</Points><Lines><DataArray type="Int64" Name="connectivity" format="ascii">0 1 2 3</DataArray>\n'
+  printf '<DataArray type="Int64" Name="offsets" format="ascii">4</DataArray></Lines></Piece></PolyData></VTKFile>\n'
+} >"$work/nan-point.vtp"
+bad_point_line() {   # bad_point_line FILE LINE: exit 2, the message names the point's line, not the cells'
+  refused 2 "$T" metrics -q --rates 1 "$1" || return 1
+  grep -qF "$1:$2: point 2:" "$work/stderr" || { echo "message does not name line $2:"; head -3 "$work/stderr"; return 1; }
+}
+check "legacy .vtk with a nan point used by LINES: exit 2 naming the point's line (8), not the LINES line" \
+  bad_point_line "$work/nan-point.vtk" 8
+check ".vtp with a nan point: exit 2 naming its Points DataArray's line (4), not <Lines>" \
+  bad_point_line "$work/nan-point.vtp" 4
 
 # Four points (0,0,0) (1,0,0) (2,1,0) (3,1,0) as raw appended Float64: a 4-byte count (96), then the data
 z8='\x00\x00\x00\x00\x00\x00\x00\x00' one='\x00\x00\x00\x00\x00\x00\xf0\x3f'
