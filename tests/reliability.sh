@@ -362,6 +362,18 @@ tube_cut_short() {
     || { echo "message does not name line 18:"; head -3 "$work/stderr"; return 1; }
 }
 check ".tre whose last tube ends in its header: exit 2 naming that tube, not its first tube alone" tube_cut_short
+# A Scene counts its objects (ITK reads that many): cut short between two tubes, the file has fewer;
+# with a tube appended by hand, more, which ITK would leave unread. Both are refused at the count.
+{ printf 'ObjectType = Scene\nNDims = 3\nNObjects = 3\n'; tube a; tube b; } >"$work/scene-fewer.tre"
+{ printf 'ObjectType = Scene\nNDims = 3\nNObjects = 1\n'; tube a; tube b; } >"$work/scene-more.tre"
+scene_count() {     # scene_count FILE MESSAGE
+  refused 2 "$T" metrics -q --rates 1 "$1" || return 1
+  grep -qF "$1:3: $2" "$work/stderr" || { echo "message does not name line 3:"; head -3 "$work/stderr"; return 1; }
+}
+check ".tre whose Scene counts 3 objects and holds 2 tubes (cut between them): exit 2 at the count" \
+  scene_count "$work/scene-fewer.tre" "NObjects 3, but the file holds 2 objects after its Scene: it is cut short"
+check ".tre whose Scene counts 1 object and holds 2 tubes: exit 2 at the count, not a vessel ITK would not read" \
+  scene_count "$work/scene-more.tre" "NObjects 1, but the file holds 2 objects after its Scene"
 
 { echo vessel,x,y,z; csv_rows a 1 4; echo; csv_rows a 5 8; } >"$work/group-blank.csv"
 { echo vessel,x,y,z; csv_rows a 1 4; echo '# a comment'; csv_rows a 5 8; } >"$work/group-comment.csv"
