@@ -6,7 +6,8 @@
 #   make report       build/paper.pdf (runs whatever results it needs)
 #   make paper        build/paper.pdf from the committed results/ and figures/ (no data needed)
 #   make fidelity     the fidelity benchmark: a sweep of curves of known curvature and torsion ->
-#                     results/fidelity.tsv, and the summary against its acceptance
+#                     results/fidelity.tsv, and the summary against its acceptance (and the
+#                     torsion under --torsion significant)
 #   make bench        timing of the full BraVa set (median of BENCH_RUNS runs, 1 and 2 threads);
 #                     BENCH_BASELINE=old/tortuosity: the ratio to an older build, run by run
 #   make bench-shards what the first and the last shard of 8 cost against the whole run (text, SWC)
