@@ -244,6 +244,15 @@ profile_all_labelled() {
 }
 check "profile --vessel all: the vessel's label on every row" profile_all_labelled
 
+profile_says_undersampled() {   # a helix at five points a turn: profiled, and standard error says its status
+  awk 'BEGIN { c = sqrt(17); h = 2 * 3.141592653589793 * c / 5
+               for (i = 0; i < 41; i++) { t = i * h / c; printf "%.6f %.6f %.6f\n", 4 * cos(t), 4 * sin(t), t } }' \
+    >"$work/helix5.txt"
+  "$T" profile --rate 10 "$work/helix5.txt" 2>"$work/helix5.err" | awk 'END { exit NR < 100 }' || return 1
+  grep -q 'undersampled at rate 10$' "$work/helix5.err"
+}
+check "profile of an undersampled vessel: its samples, and its status on standard error" profile_says_undersampled
+
 # Densities: 2 points per mm of a 44.72 mm helix is round(89.44) + 1 = 90 samples, 89 steps of 0.5025 mm.
 per_mm_density() {
   "$T" phantom --shape helix | "$T" metrics -q --rates 2/mm,1 - >"$work/per-mm.tsv" || return 1
