@@ -777,6 +777,12 @@ with h5py.File(path, "w") as f:
         f.create_dataset("points", data=pts)
     f.create_dataset("structure", data=np.array([[0, -1]], dtype=np.int32))
     f.create_dataset("connectivity", data=np.zeros((0, 2), dtype=np.int32))
+    addr = h5py.h5o.get_info(f["structure"].id).addr
+if kind == "header-past-end":                      # the structure's object header (version 1) 1 MB long
+    b = bytearray(open(path, "rb").read())
+    assert b[addr] == 1, "not a version 1 object header"
+    b[addr + 8:addr + 12] = (1 << 20).to_bytes(4, "little")
+    open(path, "wb").write(bytes(b))
 if kind == "precision0":                           # the structure's int32 type message, its precision set to 0
     b = bytearray(open(path, "rb").read())
     sig = bytes([0x10, 0x08, 0, 0, 4, 0, 0, 0, 0, 0, 32, 0])
@@ -793,6 +799,11 @@ h5_refused() {  # h5_refused KIND WORDS: exit 2 and the message says WORDS
 }
 check "HDF5 /points chunked with only some chunks written: exit 2, 'written only in part'" h5_refused partial "written only in part"
 check "HDF5 integer type of precision 0: exit 2 (no crash), 'bits'" h5_refused precision0 "bits"
+h5_one_line() {  # the reader refuses it before libhdf5 reads it: one line, nothing from libhdf5 at exit
+  h5_refused header-past-end "past the end" || return 1
+  [ "$(wc -l <"$work/stderr")" = 1 ] && ! grep -q "HDF5" "$work/stderr" || { echo "stderr:"; head -3 "$work/stderr"; return 1; }
+}
+check "HDF5 object header past the end of the data: exit 2, one line, nothing from libhdf5 at exit" h5_one_line
 
 hdf5_little_memory() {  # every limit from 40 to 66 MB: exit 1 with a message (never a crash, never exit 2)
   h5_fixture plain "$work/plain.h5" || return 1
@@ -811,6 +822,25 @@ if grep -q __asan_init "$T" 2>/dev/null; then
 else
   check "HDF5 under ulimit -v 40-66 MB: exit 0 or 1 with a message, never a crash" hdf5_little_memory
 fi
+
+urandom_at_once() {  # a device of binary bytes is refused from its first chunk, not read to the memory limit
+  local t0 t1
+  t0=$(date +%s.%N); refused 2 timeout 20 "$T" metrics -q /dev/urandom || return 1; t1=$(date +%s.%N)
+  grep -q "NUL bytes" "$work/stderr" && elapsed_below "$t0" "$t1" 5 || { echo "after $t0 .. $t1:"; head -2 "$work/stderr"; return 1; }
+}
+check "metrics /dev/urandom: exit 2 at once, 'NUL bytes'" urandom_at_once
+for p in 0.1x0.2 0.1,0.2 0.1x0.2x0.3x0.4 '' digits:4,digits:5; do
+  check "--precision '$p': exit 2" refused 2 "$T" metrics -q --precision "$p" "$work/h3.txt"
+done
+help_lists_only_its_options() {  # profile and sufficient do not offer metrics' own options
+  local c
+  for c in profile sufficient metrics; do "$T" $c --help >"$work/help-$c.txt" || return 1; done
+  for c in profile sufficient; do
+    grep -qE -- '^ +--(null|uncertainty) ' "$work/help-$c.txt" && { echo "$c --help lists a metrics option"; return 1; }
+  done
+  grep -qE -- '^ +--uncertainty ' "$work/help-metrics.txt"
+}
+check "profile and sufficient --help list no option of metrics alone" help_lists_only_its_options
 
 printf 'x;y;z\n0;0;0\n1,5;0;0\n2;1.234;0\n3;2;0\n4;3;1\n5;5;1\n' >"$work/marks.csv"
 check "a semicolon CSV with 1,5 and 1.234: exit 2 (mixed decimal marks)" refused 2 "$T" metrics -q "$work/marks.csv"
