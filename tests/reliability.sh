@@ -841,6 +841,8 @@ help_lists_only_its_options() {  # profile and sufficient do not offer metrics' 
   grep -qE -- '^ +--uncertainty ' "$work/help-metrics.txt"
 }
 check "profile and sufficient --help list no option of metrics alone" help_lists_only_its_options
+check "sufficient --vtk-names ours: exit 2 (it writes no VTK)" refused 2 "$T" sufficient -q --vtk-names ours "$work/h3.txt"
+check "profile --vtk-names ours: accepted" "$T" profile -q --vtk-names ours "$work/h3.txt"
 
 printf 'x;y;z\n0;0;0\n1,5;0;0\n2;1.234;0\n3;2;0\n4;3;1\n5;5;1\n' >"$work/marks.csv"
 check "a semicolon CSV with 1,5 and 1.234: exit 2 (mixed decimal marks)" refused 2 "$T" metrics -q "$work/marks.csv"
