@@ -778,8 +778,10 @@ with h5py.File(path, "w") as f:
     f.create_dataset("structure", data=np.array([[0, -1]], dtype=np.int32))
     f.create_dataset("connectivity", data=np.zeros((0, 2), dtype=np.int32))
     addr = h5py.h5o.get_info(f["structure"].id).addr
-if kind == "header-past-end":                      # the structure's object header (version 1) 1 MB long
-    b = bytearray(open(path, "rb").read())
+    if kind == "root-header-past-end":
+        addr = h5py.h5o.get_info(f["/"].id).addr
+if kind.endswith("header-past-end"):               # the structure's (or the root group's) object header
+    b = bytearray(open(path, "rb").read())         # (version 1) 1 MB long
     assert b[addr] == 1, "not a version 1 object header"
     b[addr + 8:addr + 12] = (1 << 20).to_bytes(4, "little")
     open(path, "wb").write(bytes(b))
@@ -799,11 +801,14 @@ h5_refused() {  # h5_refused KIND WORDS: exit 2 and the message says WORDS
 }
 check "HDF5 /points chunked with only some chunks written: exit 2, 'written only in part'" h5_refused partial "written only in part"
 check "HDF5 integer type of precision 0: exit 2 (no crash), 'bits'" h5_refused precision0 "bits"
-h5_one_line() {  # the reader refuses it before libhdf5 reads it: one line, nothing from libhdf5 at exit
-  h5_refused header-past-end "past the end" || return 1
+h5_one_line() {  # h5_one_line KIND WORDS: refused before libhdf5 reads it: one line, nothing from libhdf5 at exit
+  h5_refused "$1" "$2" || return 1
   [ "$(wc -l <"$work/stderr")" = 1 ] && ! grep -q "HDF5" "$work/stderr" || { echo "stderr:"; head -3 "$work/stderr"; return 1; }
 }
-check "HDF5 object header past the end of the data: exit 2, one line, nothing from libhdf5 at exit" h5_one_line
+check "HDF5 object header past the end of the data: exit 2, one line, nothing from libhdf5 at exit" \
+  h5_one_line header-past-end "past the end"
+check "HDF5 root group's object header past the end of the data: exit 2, one line, nothing at exit" \
+  h5_one_line root-header-past-end "root group: its object header runs past the end"
 
 hdf5_little_memory() {  # every limit from 40 to 66 MB: exit 1 with a message (never a crash, never exit 2)
   h5_fixture plain "$work/plain.h5" || return 1
@@ -829,6 +834,24 @@ urandom_at_once() {  # a device of binary bytes is refused from its first chunk,
   grep -q "NUL bytes" "$work/stderr" && elapsed_below "$t0" "$t1" 5 || { echo "after $t0 .. $t1:"; head -2 "$work/stderr"; return 1; }
 }
 check "metrics /dev/urandom: exit 2 at once, 'NUL bytes'" urandom_at_once
+line_at_once() {   # line_at_once LINE PRODUCER...: a line that does not end, on a pipe: refused at once, by its number
+  local line=$1 t0 t1; shift
+  t0=$(date +%s.%N)
+  ("$@" | head -c 200000000 | exec timeout 20 "$T" metrics -q -) >"$work/stdout" 2>"$work/stderr"; rc=$?
+  t1=$(date +%s.%N)
+  expect_rc 2 && grep -q "^-:$line: more than 1048576 bytes without a line break" "$work/stderr" \
+    && elapsed_below "$t0" "$t1" 5 || { echo "after $t0 .. $t1:"; head -2 "$work/stderr"; return 1; }
+}
+endless_line() { yes xxxxxxxx | tr -d '\n'; }
+points_then_endless_line() { awk 'NF && ++n <= 3' "$work/pts8.txt"; endless_line; }
+check "a line that does not end, on a pipe: exit 2 at once, '-:1: more than 1048576 bytes'" line_at_once 1 endless_line
+check "three points, then a line that does not end: exit 2 at once, '-:4:'" line_at_once 4 points_then_endless_line
+long_comment_piped() {   # a comment of 1 MiB on a pipe (at the limit), then points: read
+  { head -c 1048574 /dev/zero | tr '\0' x | sed 's/^/# /'; echo; cat "$work/pts8.txt"; } >"$work/long-comment.txt"
+  run sh -c 'cat "$2" | exec "$1" metrics -q --rates 1 -' sh "$T" "$work/long-comment.txt"
+  expect_rc 0
+}
+check "a comment line of 1 MiB, then points, on a pipe: exit 0" long_comment_piped
 for p in 0.1x0.2 0.1,0.2 0.1x0.2x0.3x0.4 '' digits:4,digits:5; do
   check "--precision '$p': exit 2" refused 2 "$T" metrics -q --precision "$p" "$work/h3.txt"
 done
