@@ -769,7 +769,8 @@ h5_fixture() {  # h5_fixture KIND FILE: a section morphology with one defect
 import sys, h5py, numpy as np
 kind, path = sys.argv[1], sys.argv[2]
 pts = np.array([[i, 0.1 * i * i, 0.01 * i ** 3, 1.0] for i in range(10)], dtype=np.float64)
-with h5py.File(path, "w") as f:
+v2 = kind.startswith("latest") or kind.endswith("-checksum")   # version 2 object headers, with checksums
+with h5py.File(path, "w", libver="latest" if v2 else "earliest") as f:
     if kind == "partial":
         d = f.create_dataset("points", shape=(10, 4), dtype="f8", chunks=(2, 4))
         d[0:4] = pts[0:4]                          # rows 4-9 never written
@@ -778,12 +779,20 @@ with h5py.File(path, "w") as f:
     f.create_dataset("structure", data=np.array([[0, -1]], dtype=np.int32))
     f.create_dataset("connectivity", data=np.zeros((0, 2), dtype=np.int32))
     addr = h5py.h5o.get_info(f["structure"].id).addr
-    if kind == "root-header-past-end":
+    if kind in ("root-header-past-end", "root-checksum"):
         addr = h5py.h5o.get_info(f["/"].id).addr
+    if kind == "points-checksum":
+        addr = h5py.h5o.get_info(f["points"].id).addr
 if kind.endswith("header-past-end"):               # the structure's (or the root group's) object header
     b = bytearray(open(path, "rb").read())         # (version 1) 1 MB long
     assert b[addr] == 1, "not a version 1 object header"
     b[addr + 8:addr + 12] = (1 << 20).to_bytes(4, "little")
+    open(path, "wb").write(bytes(b))
+if kind.endswith("-checksum"):                     # the first message's type byte changed: the checksum fails
+    b = bytearray(open(path, "rb").read())
+    assert b[addr:addr + 4] == b"OHDR", "not a version 2 object header"
+    flags = b[addr + 5]
+    b[addr + 6 + (16 if flags & 0x20 else 0) + (4 if flags & 0x10 else 0) + (1 << (flags & 3))] ^= 0x40
     open(path, "wb").write(bytes(b))
 if kind == "precision0":                           # the structure's int32 type message, its precision set to 0
     b = bytearray(open(path, "rb").read())
@@ -809,6 +818,16 @@ check "HDF5 object header past the end of the data: exit 2, one line, nothing fr
   h5_one_line header-past-end "past the end"
 check "HDF5 root group's object header past the end of the data: exit 2, one line, nothing at exit" \
   h5_one_line root-header-past-end "root group: its object header runs past the end"
+check "HDF5 root group's version 2 object header failing its checksum: exit 2, one line, nothing at exit" \
+  h5_one_line root-checksum "root group: its object header does not match its checksum"
+check "HDF5 /points' version 2 object header failing its checksum: exit 2, one line, nothing at exit" \
+  h5_one_line points-checksum "'/points': its object header does not match its checksum"
+h5_latest_read() {  # a sound file of version 2 headers: every checksum agrees, and it is read
+  h5_fixture latest "$work/latest.h5" || return 1
+  run "$T" metrics -q --rates 1 "$work/latest.h5"
+  expect_rc 0 && [ "$(wc -l <"$work/stdout")" = 2 ] && [ ! -s "$work/stderr" ]
+}
+check "HDF5 written with version 2 object headers (libver latest): read, no message" h5_latest_read
 
 hdf5_little_memory() {  # every limit from 40 to 66 MB: exit 1 with a message (never a crash, never exit 2)
   h5_fixture plain "$work/plain.h5" || return 1
