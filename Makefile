@@ -11,7 +11,7 @@
 #   make bench        timing of the full BraVa set (median of BENCH_RUNS runs, 1 and 2 threads);
 #                     BENCH_BASELINE=old/tortuosity: the ratio to an older build, run by run
 #   make bench-shards what the first and the last shard of 8 cost against the whole run (text, SWC)
-#   make bench-stages where its time goes, stage by stage (perf)
+#   make bench-stages where its time goes, stage by stage (perf); RATES=100: at that rate alone
 #   make memory       peak memory of metrics on 10^4, 10^5 and 10^6 vessels, and of one
 #                     vessel of 10^6 points at 100X
 #   make install      program, library, header, pkg-config file and manual page under PREFIX
